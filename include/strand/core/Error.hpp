@@ -1,0 +1,26 @@
+// Errors and exit codes shared by every layer.
+//
+// Two kinds of failure, never blurred (docs/architecture.md, "Errors"):
+//  - InputError: the user's scene or options are wrong. The message names file, line, key and reason.
+//  - SolveError: a solve diverged. The message names the time or load step and gives a hint.
+// Internal invariants use assert(). Exceptions never cross a PETSc callback: the callbacks catch
+// them (PetscCallCXX) and return an error code, and the drivers map them to exit codes.
+#pragma once
+#include <stdexcept>
+#include <string>
+
+namespace strand {
+
+enum ExitCode : int { kExitSuccess = 0, kExitInternal = 1, kExitBadInput = 2, kExitDiverged = 3 };
+
+class InputError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+class SolveError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace strand

@@ -1,0 +1,405 @@
+// Gradient-deficient ANCF cable element in 2D and 3D: AncfCable2d, AncfCable3d.
+//
+// Coordinates of one element (seed 003 Eq. 66-68, extended to 3D):
+//   q_e = [ r_1 (D), sigma_1 r_1' (D), r_2 (D), sigma_2 r_2' (D) ],   r' = dr/dx,
+// x the reference arc length, l the element length, sigma_a the slope scale of node a (1: plain
+// slopes; l: the scaled slopes "l dr/dx" of seed 003 Eq. 68). Interpolation (Eq. 69-71):
+//   r(eta) = sum_a N_a(eta) e_a,  N = [s1, s2 l/sigma_1, s3, s4 l/sigma_2],  eta = x/l in [0, 1].
+//
+// Elastic line approach (Gerstmayr & Irschik, J. Sound Vib. 318 (2008); seed 003 Eq. 60-64):
+//   W = 1/2 EA (eps - eps0)^2 + 1/2 EI |kappa - kappa0|^2 per unit reference length, with
+//   eps = (r'.r' - 1)/2 (Green strain, Eq. 62) and the curvature vector kappa = r' x r'' / |r'|^3
+//   (Eq. 64; a scalar in 2D, so kappa0 != 0 only in 2D).
+// Kelvin-Voigt damping on the strain and curvature rates (seed 000 Eq. 31-40):
+//   generalized stresses  N = EA (eps - eps0 + c_eps deps/dt),  m = EI (kappa - kappa0 + c_kap dkappa/dt).
+// In 3D the curvature-vector rate also sees rigid rotations of a curved cable out of its plane;
+// docs/elements/ancf-cable.md states this limitation.
+//
+// Everything below is a function of the pointwise vector G = (r', r'') (2D entries). The element
+// residual and tangent follow by the chain rule with the slot coefficients B1 = dN/dx, B2 = d2N/dx2:
+//   f_a = int (B1_a f_G[r'] + B2_a f_G[r'']) dx,   K_ab = int sum B_a K_G B_b dx.
+// Sign convention (docs/architecture.md): f is the internal force on the left-hand side,
+//   M a + f_int(q, v) - f_ext = 0.
+#pragma once
+#include <array>
+#include <cmath>
+
+#include "strand/elements/CableSection.hpp"
+#include "strand/elements/CableShapeTable.hpp"
+
+namespace strand::elements {
+
+template <int D>
+class AncfCable final {
+  static_assert(D == 2 || D == 3, "AncfCable is 2D or 3D");
+
+public:
+  static constexpr int kDim = D;
+  static constexpr int kNodes = 2;
+  static constexpr int kDofPerNode = 2 * D;
+  static constexpr int kDof = 4 * D;
+  static constexpr int kCurv = (D == 2) ? 1 : 3;  // components of the curvature vector
+  static constexpr int kG = 2 * D;                // size of G = (r', r'')
+
+  struct Geometry {
+    double length = 0.0;                 // reference length l of the element [m]
+    double slopeScale[2] = {1.0, 1.0};   // sigma of node 1 and 2
+    const double* eps0 = nullptr;        // reference axial strain at each Gauss point (null: 0)
+    const double* kappa0 = nullptr;      // reference curvature at each Gauss point, 2D (null: 0)
+  };
+
+  // Shape-function values N and their x-derivatives B1, B2 for the four coordinate slots.
+  struct Slots {
+    double N[4], B1[4], B2[4];
+  };
+  static Slots slots(const Geometry& geo, const math::HermiteValues& h) {
+    const double l = geo.length;
+    const double scale[4] = {1.0, l / geo.slopeScale[0], 1.0, l / geo.slopeScale[1]};
+    Slots sl;
+    for (int a = 0; a < 4; ++a) {
+      sl.N[a] = h.s[a] * scale[a];
+      sl.B1[a] = h.ds[a] * scale[a] / l;
+      sl.B2[a] = h.dds[a] * scale[a] / (l * l);
+    }
+    return sl;
+  }
+
+  // ---- pointwise kinematics, templated on the scalar (double, or math::Dual for tests) ----
+
+  // c = r' x r'' (2D: the scalar z-component).
+  template <class S>
+  static void cross(const S* g1, const S* g2, S* c) {
+    if constexpr (D == 2) {
+      c[0] = g1[0] * g2[1] - g1[1] * g2[0];
+    } else {
+      c[0] = g1[1] * g2[2] - g1[2] * g2[1];
+      c[1] = g1[2] * g2[0] - g1[0] * g2[2];
+      c[2] = g1[0] * g2[1] - g1[1] * g2[0];
+    }
+  }
+
+  // G = (r', r'') at one Gauss point from element coordinates.
+  template <class S>
+  static void gather(const Slots& sl, const S* q, S* G) {
+    for (int k = 0; k < kG; ++k) G[k] = S(0.0);
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < D; ++i) {
+        G[i] += sl.B1[a] * q[a * D + i];
+        G[D + i] += sl.B2[a] * q[a * D + i];
+      }
+  }
+
+  // Axial strain and curvature vector.
+  template <class S>
+  static void strains(const S* G, S& eps, S* kappa) {
+    S s = G[0] * G[0];
+    for (int i = 1; i < D; ++i) s += G[i] * G[i];
+    eps = 0.5 * (s - 1.0);
+    using std::sqrt;
+    const S inv = 1.0 / (s * sqrt(s));
+    S c[kCurv];
+    cross(G, G + D, c);
+    for (int i = 0; i < kCurv; ++i) kappa[i] = c[i] * inv;
+  }
+
+  // Strain energy of the element (no damping): int W dx.
+  template <class S>
+  static S strainEnergy(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
+                        const S* q) {
+    S U(0.0);
+    for (int g = 0; g < tab.size(); ++g) {
+      const Slots sl = slots(geo, tab.at[g]);
+      S G[kG], eps, kap[kCurv];
+      gather(sl, q, G);
+      strains(G, eps, kap);
+      const double e0 = geo.eps0 ? geo.eps0[g] : 0.0;
+      S w = 0.5 * sec.EA * (eps - e0) * (eps - e0);
+      for (int i = 0; i < kCurv; ++i) {
+        const double k0 = (geo.kappa0 && D == 2) ? geo.kappa0[g * kCurv + i] : 0.0;
+        w += 0.5 * sec.EI * (kap[i] - k0) * (kap[i] - k0);
+      }
+      U += tab.rule.w[g] * geo.length * w;
+    }
+    return U;
+  }
+
+  // Rayleigh dissipation function R = int 1/2 (EA c_eps deps^2 + EI c_kap |dkappa|^2) dx;
+  // the damping force is dR/dv (tests check it), the dissipated power is 2R.
+  template <class S>
+  static S dissipation(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
+                       const S* q, const S* v) {
+    S R(0.0);
+    for (int g = 0; g < tab.size(); ++g) {
+      const Slots sl = slots(geo, tab.at[g]);
+      S G[kG], Gd[kG];
+      gather(sl, q, G);
+      gather(sl, v, Gd);
+      S epsDot = G[0] * Gd[0];
+      for (int i = 1; i < D; ++i) epsDot += G[i] * Gd[i];
+      // kappa-dot by the exact time derivative of c / s^(3/2)
+      S s = G[0] * G[0], sDot = 2.0 * G[0] * Gd[0];
+      for (int i = 1; i < D; ++i) { s += G[i] * G[i]; sDot += 2.0 * G[i] * Gd[i]; }
+      using std::sqrt;
+      const S s32 = s * sqrt(s);
+      S c[kCurv], c1[kCurv], c2[kCurv];
+      cross(G, G + D, c);
+      cross(Gd, G + D, c1);
+      cross(G, Gd + D, c2);
+      S r = 0.5 * sec.EA * sec.dampAxial * epsDot * epsDot;
+      for (int i = 0; i < kCurv; ++i) {
+        const S kd = (c1[i] + c2[i]) / s32 - 1.5 * c[i] * sDot / (s32 * s);
+        r += 0.5 * sec.EI * sec.dampBending * kd * kd;
+      }
+      R += tab.rule.w[g] * geo.length * r;
+    }
+    return R;
+  }
+
+  // ---- residual and tangent ----
+
+  // Internal force f_int(q, v) = dU/dq + dR/dv (elastic + Kelvin-Voigt damping).
+  template <class S>
+  static void force(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
+                    const S* q, const S* v, S* f) {
+    for (int k = 0; k < kDof; ++k) f[k] = S(0.0);
+    const bool damped = v && (sec.dampAxial != 0.0 || sec.dampBending != 0.0);
+    for (int g = 0; g < tab.size(); ++g) {
+      const Slots sl = slots(geo, tab.at[g]);
+      S G[kG], Gd[kG];
+      gather(sl, q, G);
+      if (damped) gather(sl, v, Gd);
+      S fG[kG];
+      pointForce(sec, geo, g, G, damped ? Gd : nullptr, fG);
+      const double wl = tab.rule.w[g] * geo.length;
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < D; ++i) f[a * D + i] += wl * (sl.B1[a] * fG[i] + sl.B2[a] * fG[D + i]);
+    }
+  }
+
+  // K = df/dq and Dm = df/dv (row-major kDof x kDof), returned separately (design section 2).
+  // f (optional) receives the internal force; Dm may be null.
+  static void tangent(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
+                      const double* q, const double* v, double* f, double* K, double* Dm) {
+    for (int k = 0; k < kDof * kDof; ++k) K[k] = 0.0;
+    if (Dm)
+      for (int k = 0; k < kDof * kDof; ++k) Dm[k] = 0.0;
+    if (f)
+      for (int k = 0; k < kDof; ++k) f[k] = 0.0;
+    const bool damped = v && (sec.dampAxial != 0.0 || sec.dampBending != 0.0);
+    for (int g = 0; g < tab.size(); ++g) {
+      const Slots sl = slots(geo, tab.at[g]);
+      double G[kG], Gd[kG] = {};
+      gather(sl, q, G);
+      if (damped) gather(sl, v, Gd);
+      double fG[kG], KG[kG][kG], DG[kG][kG];
+      pointTangent(sec, geo, g, G, damped ? Gd : nullptr, fG, KG, DG);
+      const double wl = tab.rule.w[g] * geo.length;
+      if (f)
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < D; ++i) f[a * D + i] += wl * (sl.B1[a] * fG[i] + sl.B2[a] * fG[D + i]);
+      scatterPointMatrix(sl, wl, KG, K);
+      if (Dm && damped) scatterPointMatrix(sl, wl, DG, Dm);
+    }
+  }
+
+  // Consistent mass M = rhoA int N^T N dx (constant). tab must integrate degree 6 exactly (>= 4 points).
+  static void mass(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab, double* M) {
+    double m[4][4] = {};
+    for (int g = 0; g < tab.size(); ++g) {
+      const Slots sl = slots(geo, tab.at[g]);
+      const double wl = tab.rule.w[g] * geo.length * sec.rhoA;
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) m[a][b] += wl * sl.N[a] * sl.N[b];
+    }
+    for (int k = 0; k < kDof * kDof; ++k) M[k] = 0.0;
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        for (int i = 0; i < D; ++i) M[(a * D + i) * kDof + b * D + i] = m[a][b];
+  }
+
+  // Point mass m at eta in [0, 1] (seed 003 Eq. 53): M += m N(eta)^T N(eta).
+  static void addPointMass(const Geometry& geo, double m, double eta, double* M) {
+    const Slots sl = slots(geo, math::hermite(eta));
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        for (int i = 0; i < D; ++i) M[(a * D + i) * kDof + b * D + i] += m * sl.N[a] * sl.N[b];
+  }
+
+  // Consistent load of a force per unit length p (constant over the element): f_a = int N_a p dx.
+  static void distributedLoad(const Geometry& geo, const CableShapeTable& tab, const double* p, double* f) {
+    for (int k = 0; k < kDof; ++k) f[k] = 0.0;
+    for (int g = 0; g < tab.size(); ++g) {
+      const Slots sl = slots(geo, tab.at[g]);
+      const double wl = tab.rule.w[g] * geo.length;
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < D; ++i) f[a * D + i] += wl * sl.N[a] * p[i];
+    }
+  }
+
+private:
+  // Pointwise generalized force f_G = N de/dG + m . dkappa/dG.
+  template <class S>
+  static void pointForce(const CableSection& sec, const Geometry& geo, int g, const S* G, const S* Gd, S* fG) {
+    S s = G[0] * G[0];
+    for (int i = 1; i < D; ++i) s += G[i] * G[i];
+    using std::sqrt;
+    const S A = 1.0 / (s * sqrt(s)), B = A / s;  // s^(-3/2), s^(-5/2)
+    S c[kCurv], cG[kCurv][kG];
+    cross(G, G + D, c);
+    crossGradient(G, cG);
+    const double e0 = geo.eps0 ? geo.eps0[g] : 0.0;
+    S tension = sec.EA * (0.5 * (s - 1.0) - e0);
+    if (Gd) {
+      S epsDot = G[0] * Gd[0];
+      for (int i = 1; i < D; ++i) epsDot += G[i] * Gd[i];
+      tension += sec.EA * sec.dampAxial * epsDot;
+    }
+    for (int k = 0; k < kG; ++k) fG[k] = S(0.0);
+    for (int i = 0; i < D; ++i) fG[i] = tension * G[i];
+    for (int ci = 0; ci < kCurv; ++ci) {
+      S J[kG];  // dkappa_ci/dG = A dc/dG - 3 c B (r', 0)
+      for (int k = 0; k < kG; ++k) J[k] = A * cG[ci][k];
+      for (int i = 0; i < D; ++i) J[i] -= 3.0 * c[ci] * B * G[i];
+      const double k0 = (geo.kappa0 && D == 2) ? geo.kappa0[g * kCurv + ci] : 0.0;
+      S moment = sec.EI * (c[ci] * A - k0);
+      if (Gd) {
+        S kDot(0.0);
+        for (int k = 0; k < kG; ++k) kDot += J[k] * Gd[k];
+        moment += sec.EI * sec.dampBending * kDot;
+      }
+      for (int k = 0; k < kG; ++k) fG[k] += moment * J[k];
+    }
+  }
+
+  // dc/dG for c = r' x r''.
+  template <class S>
+  static void crossGradient(const S* G, S cG[kCurv][kG]) {
+    const S* g1 = G;
+    const S* g2 = G + D;
+    if constexpr (D == 2) {
+      cG[0][0] = g2[1]; cG[0][1] = -g2[0]; cG[0][2] = -g1[1]; cG[0][3] = g1[0];
+    } else {
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < kG; ++k) cG[i][k] = S(0.0);
+      cG[0][1] = g2[2];  cG[0][2] = -g2[1]; cG[0][4] = -g1[2]; cG[0][5] = g1[1];
+      cG[1][0] = -g2[2]; cG[1][2] = g2[0];  cG[1][3] = g1[2];  cG[1][5] = -g1[0];
+      cG[2][0] = g2[1];  cG[2][1] = -g2[0]; cG[2][3] = -g1[1]; cG[2][4] = g1[0];
+    }
+  }
+
+  // d2c_i/dG2: constant, [[0, E_i], [E_i^T, 0]] with (E_i)_jk = d2 c_i / dr'_j dr''_k.
+  static double crossHessianE(int i, int j, int k) {
+    if constexpr (D == 2) {
+      (void)i;
+      return (j == 0 && k == 1) ? 1.0 : (j == 1 && k == 0) ? -1.0 : 0.0;
+    } else {
+      // Levi-Civita epsilon_ijk
+      if (i == j || j == k || i == k) return 0.0;
+      return ((i == 0 && j == 1) || (i == 1 && j == 2) || (i == 2 && j == 0)) ? 1.0 : -1.0;
+    }
+  }
+
+  // Pointwise force, stiffness K_G = df_G/dG and damping D_G = df_G/dGd, derived by hand:
+  //   f_G  = N e_G + sum_i m_i J_i,        e_G = (r', 0), J_i = dkappa_i/dG
+  //   K_G  = EA e_G e_G^T + N P1 + EA c_eps e_G (r'_dot, 0)^T
+  //        + EI J^T J + sum_i m_i H_i + EI c_kap sum_i J_i (H_i Gd)^T
+  //   D_G  = EA c_eps e_G e_G^T + EI c_kap J^T J
+  // with P1 = d e_G/dG and the curvature Hessian (A = s^-3/2, B = s^-5/2, s = r'.r')
+  //   H_i  = A c_i,GG - 3B (c_i,G e_G^T + e_G c_i,G^T) + 15 c_i s^-7/2 e_G e_G^T - 3 c_i B P1.
+  static void pointTangent(const CableSection& sec, const Geometry& geo, int g, const double* G,
+                           const double* Gd, double* fG, double KG[kG][kG], double DG[kG][kG]) {
+    double s = 0.0;
+    for (int i = 0; i < D; ++i) s += G[i] * G[i];
+    const double A = 1.0 / (s * std::sqrt(s)), B = A / s, C7 = B / s;
+    double c[kCurv], cG[kCurv][kG];
+    cross(G, G + D, c);
+    crossGradient(G, cG);
+    const double e0 = geo.eps0 ? geo.eps0[g] : 0.0;
+    double tension = sec.EA * (0.5 * (s - 1.0) - e0);
+    const double cEps = Gd ? sec.dampAxial : 0.0, cKap = Gd ? sec.dampBending : 0.0;
+    if (Gd) {
+      double epsDot = 0.0;
+      for (int i = 0; i < D; ++i) epsDot += G[i] * Gd[i];
+      tension += sec.EA * cEps * epsDot;
+    }
+    for (int a = 0; a < kG; ++a) {
+      fG[a] = 0.0;
+      for (int b = 0; b < kG; ++b) KG[a][b] = DG[a][b] = 0.0;
+    }
+    // axial part
+    for (int i = 0; i < D; ++i) {
+      fG[i] = tension * G[i];
+      KG[i][i] += tension;
+      for (int j = 0; j < D; ++j) {
+        KG[i][j] += sec.EA * G[i] * G[j];
+        if (Gd) {
+          KG[i][j] += sec.EA * cEps * G[i] * Gd[j];
+          DG[i][j] += sec.EA * cEps * G[i] * G[j];
+        }
+      }
+    }
+    // bending part
+    for (int ci = 0; ci < kCurv; ++ci) {
+      double J[kG], H[kG][kG];
+      for (int k = 0; k < kG; ++k) J[k] = A * cG[ci][k];
+      for (int i = 0; i < D; ++i) J[i] -= 3.0 * c[ci] * B * G[i];
+      for (int a = 0; a < kG; ++a)
+        for (int b = 0; b < kG; ++b) H[a][b] = 0.0;
+      for (int j = 0; j < D; ++j)
+        for (int k = 0; k < D; ++k) {
+          const double e = A * crossHessianE(ci, j, k);
+          H[j][D + k] += e;
+          H[D + k][j] += e;
+        }
+      for (int a = 0; a < kG; ++a)
+        for (int j = 0; j < D; ++j) {
+          const double t = -3.0 * B * cG[ci][a] * G[j];
+          H[a][j] += t;
+          H[j][a] += t;
+        }
+      for (int i = 0; i < D; ++i) {
+        for (int j = 0; j < D; ++j) H[i][j] += 15.0 * c[ci] * C7 * G[i] * G[j];
+        H[i][i] -= 3.0 * c[ci] * B;
+      }
+      const double k0 = (geo.kappa0 && D == 2) ? geo.kappa0[g * kCurv + ci] : 0.0;
+      double moment = sec.EI * (c[ci] * A - k0);
+      double HGd[kG] = {};
+      if (Gd) {
+        double kDot = 0.0;
+        for (int k = 0; k < kG; ++k) kDot += J[k] * Gd[k];
+        moment += sec.EI * cKap * kDot;
+        for (int a = 0; a < kG; ++a)
+          for (int b = 0; b < kG; ++b) HGd[a] += H[a][b] * Gd[b];
+      }
+      for (int a = 0; a < kG; ++a) {
+        fG[a] += moment * J[a];
+        for (int b = 0; b < kG; ++b) {
+          KG[a][b] += sec.EI * J[a] * J[b] + moment * H[a][b];
+          if (Gd) {
+            KG[a][b] += sec.EI * cKap * J[a] * HGd[b];
+            DG[a][b] += sec.EI * cKap * J[a] * J[b];
+          }
+        }
+      }
+    }
+  }
+
+  // Element matrix += wl * sum_{alpha,beta} B_alpha[a] X[alpha i][beta j] B_beta[b].
+  static void scatterPointMatrix(const Slots& sl, double wl, const double X[kG][kG], double* K) {
+    for (int a = 0; a < 4; ++a) {
+      double T[D][kG];  // rows of node-slot a: B1_a X[r', :] + B2_a X[r'', :]
+      for (int i = 0; i < D; ++i)
+        for (int k = 0; k < kG; ++k) T[i][k] = wl * (sl.B1[a] * X[i][k] + sl.B2[a] * X[D + i][k]);
+      for (int b = 0; b < 4; ++b)
+        for (int i = 0; i < D; ++i) {
+          double* row = K + (a * D + i) * kDof + b * D;
+          for (int j = 0; j < D; ++j) row[j] += T[i][j] * sl.B1[b] + T[i][D + j] * sl.B2[b];
+        }
+    }
+  }
+};
+
+using AncfCable2d = AncfCable<2>;
+using AncfCable3d = AncfCable<3>;
+
+}  // namespace strand::elements
