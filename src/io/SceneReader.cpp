@@ -1,0 +1,739 @@
+// YAML scene -> model::SceneDescription. The format is documented key by key in
+// docs/scene-reference.md; keep the two in step.
+//
+// Every value is read through a Field: the YAML node plus its dotted key path and line, so that
+// each check can throw "<file>:<line>: <key>: <reason>" without passing places around by hand.
+#include "strand/io/SceneReader.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "strand/core/Error.hpp"
+
+namespace strand::io {
+namespace {
+
+namespace fs = std::filesystem;
+using model::BodyDesc;
+using model::GeometryDesc;
+using model::GeometryKind;
+using model::NodeRef;
+using model::SourceMark;
+using model::Vec3;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRelTol = 1e-12;  // "zero" for lengths and angles, relative to the coordinates
+
+// ------------------------------------------------------------------------------------------------
+// Text and vector helpers
+
+std::string fmt(double v, int precision = 6) {
+  std::ostringstream s;
+  s.precision(precision);
+  s << v;
+  return s.str();
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return "";
+  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+// What a node holds, for "expected X (got Y)" messages.
+std::string describe(const YAML::Node& n) {
+  if (!n.IsDefined() || n.IsNull()) return "nothing";
+  if (n.IsMap()) return "a map";
+  if (n.IsSequence()) return "a list";
+  std::string s = n.Scalar();
+  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  return "'" + s + "'";
+}
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double norm(const Vec3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+
+// True when the segment a-b has no length compared with the size of its coordinates.
+bool zeroLength(const Vec3& a, const Vec3& b) {
+  return norm(sub(b, a)) <= kRelTol * std::max(norm(a), norm(b));
+}
+
+// True when the unit vector `dir` is parallel to the (non-zero) chord a-b.
+bool parallelToChord(const Vec3& dir, const Vec3& a, const Vec3& b) {
+  const Vec3 chord = sub(b, a);
+  return norm(cross(dir, scaled(chord, 1.0 / norm(chord)))) < 1e-9;
+}
+
+// Empty when `v` is a valid vector for a `dim`-dimensional scene, else the reason: exactly 3
+// numbers in 3D; 2 or 3 numbers in 2D, the third one 0 (2D scenes live in the xy plane).
+std::string vectorProblem(const std::vector<double>& v, int dim) {
+  const std::string got = " (got " + std::to_string(v.size()) + ")";
+  if (dim == 3 && v.size() != 3) return "expected 3 numbers" + got;
+  if (dim == 2 && (v.size() < 2 || v.size() > 3)) return "expected 2 or 3 numbers" + got;
+  if (v.size() == 3 && dim == 2 && v[2] != 0.0)
+    return "the third number must be 0 in a 2D scene (got " + fmt(v[2]) + ")";
+  return "";
+}
+
+Vec3 toVec3(const std::vector<double>& v) { return {v[0], v[1], v.size() > 2 ? v[2] : 0.0}; }
+
+[[noreturn]] void failAt(const SourceMark& mark, const std::string& reason) {
+  throw InputError(mark.where() + ": " + reason);
+}
+
+// 1-based line of a node, or `fallback` when yaml-cpp does not know it.
+int lineOf(const YAML::Node& n, int fallback) {
+  if (!n.IsDefined()) return fallback;
+  const int line = n.Mark().line;
+  return line >= 0 ? line + 1 : fallback;
+}
+
+// ------------------------------------------------------------------------------------------------
+// Field: a scene value with its place
+
+class Field {
+public:
+  // `file` must outlive the Field. `line` is 1-based: where the key is, or for a missing key
+  // where its parent is.
+  Field(YAML::Node node, std::string key, const std::string& file, int line)
+      : node_(std::move(node)), key_(std::move(key)), file_(&file), line_(line) {}
+
+  bool present() const { return node_.IsDefined() && !node_.IsNull(); }
+  bool isList() const { return present() && node_.IsSequence(); }
+  bool isScalar(const char* text) const { return present() && node_.IsScalar() && node_.Scalar() == text; }
+  const std::string& key() const { return key_; }
+  int line() const { return line_; }
+  SourceMark mark() const { return {*file_, line_, key_.empty() ? "(root)" : key_}; }
+  [[noreturn]] void fail(const std::string& reason) const { failAt(mark(), reason); }
+
+  // Checks that this is a map whose keys are all in `allowed`, each given once.
+  void expectMap(const std::vector<std::string>& allowed) const {
+    requireMap();
+    std::map<std::string, int> seen;  // key -> line
+    for (const auto& kv : node_) {
+      const int line = lineOf(kv.first, line_);
+      if (!kv.first.IsScalar()) failAt({*file_, line, mark().key}, "keys must be plain names");
+      const std::string name = kv.first.Scalar();
+      const Field here(kv.second, childKey(name), *file_, line);
+      if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+        here.fail("unknown key; allowed: " + join(allowed));
+      if (const auto [it, fresh] = seen.emplace(name, line); !fresh)
+        here.fail("duplicate key (first given on line " + std::to_string(it->second) + ")");
+    }
+  }
+
+  // The value under `name` in this map; a missing key gives a Field that is not present().
+  Field child(const std::string& name) const {
+    requireMap();
+    for (const auto& kv : node_)
+      if (kv.first.IsScalar() && kv.first.Scalar() == name)
+        return Field(kv.second, childKey(name), *file_, lineOf(kv.first, line_));
+    return Field(YAML::Node(), childKey(name), *file_, line_);
+  }
+
+  // The entries of this list.
+  std::vector<Field> items() const {
+    requirePresent();
+    if (!node_.IsSequence()) fail("expected a list (got " + describe(node_) + ")");
+    std::vector<Field> out;
+    for (const auto& item : node_) {
+      const std::string key = key_ + "[" + std::to_string(out.size()) + "]";
+      out.emplace_back(item, key, *file_, lineOf(item, line_));
+    }
+    return out;
+  }
+
+  double number() const {
+    const double v = scalarAs<double>("a number");
+    if (!std::isfinite(v)) fail("must be a finite number (got " + describe(node_) + ")");
+    return v;
+  }
+  long integer(const char* what = "an integer") const { return scalarAs<long>(what); }
+  bool boolean() const { return scalarAs<bool>("true or false"); }
+  std::string text() const { return scalarAs<std::string>("a string"); }
+
+private:
+  std::string childKey(const std::string& name) const { return key_.empty() ? name : key_ + "." + name; }
+  void requirePresent() const {
+    if (!present()) fail("missing required value");
+  }
+  void requireMap() const {
+    requirePresent();
+    if (!node_.IsMap()) fail("expected a map (got " + describe(node_) + ")");
+  }
+  template <class T>
+  T scalarAs(const char* what) const {
+    requirePresent();
+    const std::string expected = std::string("expected ") + what + " (got " + describe(node_) + ")";
+    if (!node_.IsScalar()) fail(expected);
+    try {
+      return node_.as<T>();
+    } catch (const YAML::Exception&) {
+      fail(expected);
+    }
+  }
+
+  YAML::Node node_;
+  std::string key_;
+  const std::string* file_;
+  int line_;
+};
+
+// ------------------------------------------------------------------------------------------------
+// Checked values
+
+double requirePositive(const Field& f) {
+  const double v = f.number();
+  if (!(v > 0.0)) f.fail("must be positive (got " + fmt(v) + ")");
+  return v;
+}
+
+double requireNonNegative(const Field& f) {
+  const double v = f.number();
+  if (v < 0.0) f.fail("must not be negative (got " + fmt(v) + ")");
+  return v;
+}
+
+int requireIntInRange(const Field& f, long lo, long hi) {
+  const long v = f.integer();
+  if (v < lo || v > hi) {
+    const std::string range = hi == INT_MAX  ? "at least " + std::to_string(lo)
+                              : hi == lo + 1 ? std::to_string(lo) + " or " + std::to_string(hi)
+                                             : std::to_string(lo) + ".." + std::to_string(hi);
+    f.fail("must be " + range + " (got " + std::to_string(v) + ")");
+  }
+  return static_cast<int>(v);
+}
+
+int requireIntAtLeast(const Field& f, long lo) { return requireIntInRange(f, lo, INT_MAX); }
+
+// The entry of `table` (anything with a `name` member) named by the string in `f`.
+template <class Table>
+const auto& pick(const Field& f, const char* what, const Table& table) {
+  const std::string s = f.text();
+  std::vector<std::string> names;
+  for (const auto& entry : table) {
+    if (s == entry.name) return entry;
+    names.emplace_back(entry.name);
+  }
+  f.fail("unknown " + std::string(what) + " '" + s + "'; allowed: " + join(names));
+}
+
+// A position, force or direction (see vectorProblem).
+Vec3 readVector(const Field& f, int dim) {
+  std::vector<double> v;
+  for (const Field& item : f.items()) v.push_back(item.number());
+  if (const std::string problem = vectorProblem(v, dim); !problem.empty()) f.fail(problem);
+  return toVec3(v);
+}
+
+// A non-zero vector, returned with unit length.
+Vec3 readDirection(const Field& f, int dim) {
+  const Vec3 v = readVector(f, dim);
+  const double n = norm(v);
+  if (n == 0.0) f.fail("must not be the zero vector");
+  return scaled(v, 1.0 / n);
+}
+
+// A moment: 3 numbers in 3D. A 2D moment acts about z: a number Mz, or [0, 0, Mz].
+Vec3 readMoment(const Field& f, int dim) {
+  if (dim == 3) return readVector(f, 3);
+  if (f.present() && !f.isList()) return {0.0, 0.0, f.number()};
+  std::vector<double> v;
+  for (const Field& item : f.items()) v.push_back(item.number());
+  if (v.size() != 3 || v[0] != 0.0 || v[1] != 0.0)
+    f.fail("a 2D moment acts about z: give a number Mz or [0, 0, Mz]");
+  return toVec3(v);
+}
+
+// ------------------------------------------------------------------------------------------------
+// Choices
+
+template <class E>
+struct Choice {
+  const char* name;
+  E value;
+};
+
+const Choice<model::Analysis> kAnalyses[] = {{"static", model::Analysis::Static},
+                                             {"modes", model::Analysis::Modes}};
+
+const Choice<model::SupportType> kSupportTypes[] = {{"clamped", model::SupportType::Clamped},
+                                                    {"pinned", model::SupportType::Pinned},
+                                                    {"fixed", model::SupportType::Fixed}};
+
+const Choice<bool> kStressFree[] = {{"straight", false}, {"initial", true}};
+
+struct ElementTypeInfo {
+  const char* name;
+  model::ElementType value;
+  int dimension;  // the scene dimension the element needs
+};
+const ElementTypeInfo kElementTypes[] = {{"AncfCable2d", model::ElementType::AncfCable2d, 2},
+                                         {"AncfCable3d", model::ElementType::AncfCable3d, 3}};
+
+// Section keys and where they go: the required ones must be positive, the optional ones (damping)
+// must not be negative.
+struct SectionKey {
+  const char* name;
+  double BodyDesc::*field;
+  bool required;
+};
+const SectionKey kSectionKeys[] = {
+    {"E", &BodyDesc::E, true},
+    {"A", &BodyDesc::A, true},
+    {"I", &BodyDesc::I, true},
+    {"rho", &BodyDesc::rho, true},
+    {"damping_axial", &BodyDesc::dampAxial, false},
+    {"damping_bending", &BodyDesc::dampBending, false},
+};
+
+// ------------------------------------------------------------------------------------------------
+// Geometry
+
+struct Context {
+  std::string file;   // for messages
+  fs::path sceneDir;  // polyline CSV files are relative to it
+  int dim = 3;
+};
+
+void readLine(const Field& f, const Context& ctx, GeometryDesc& g) {
+  g.start = readVector(f.child("start"), ctx.dim);
+  g.end = readVector(f.child("end"), ctx.dim);
+  if (zeroLength(g.start, g.end)) f.child("end").fail("must differ from start (zero length)");
+}
+
+void readArc(const Field& f, const Context& ctx, GeometryDesc& g) {
+  g.center = readVector(f.child("center"), ctx.dim);
+  g.radius = requirePositive(f.child("radius"));
+  g.startAngle = f.child("start_angle").number();
+  g.endAngle = f.child("end_angle").number();
+  const double sweep = std::abs(g.endAngle - g.startAngle);
+  const double scale = std::max({1.0, std::abs(g.startAngle), std::abs(g.endAngle)});
+  if (sweep <= kRelTol * scale) f.child("end_angle").fail("must differ from start_angle (zero-length arc)");
+  if (sweep > 2.0 * kPi * (1.0 + kRelTol))
+    f.child("end_angle")
+        .fail("the arc turns more than once (|end_angle - start_angle| = " + fmt(sweep) + " > 2*pi)");
+  if (const Field normal = f.child("normal"); normal.present()) {
+    if (ctx.dim != 3) normal.fail("only allowed when dimension is 3 (2D arcs lie in the xy plane)");
+    g.normal = readDirection(normal, 3);
+  }
+}
+
+// Polyline points from a CSV file: rows "x,y" or "x,y,z"; '#' starts a comment; blank lines are
+// skipped. Returns the 1-based CSV line of each point.
+std::vector<int> readPolylineCsv(const Field& f, const Context& ctx, std::vector<Vec3>& points) {
+  fs::path path = f.text();
+  if (path.is_relative()) path = ctx.sceneDir / path;
+  std::ifstream in(path);
+  if (!in || fs::is_directory(path)) f.fail("cannot open polyline file '" + path.string() + "'");
+  std::vector<int> lines;
+  std::string row;
+  for (int lineNo = 1; std::getline(in, row); ++lineNo) {
+    row = trim(row.substr(0, row.find('#')));
+    if (row.empty()) continue;
+    const std::string where = "'" + path.string() + "' line " + std::to_string(lineNo) + ": ";
+    std::vector<double> v;
+    std::istringstream cells(row);
+    for (std::string cell; std::getline(cells, cell, ',');) {
+      cell = trim(cell);
+      double x = 0.0;
+      const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), x);
+      if (cell.empty() || ec != std::errc() || end != cell.data() + cell.size() || !std::isfinite(x))
+        f.fail(where + "expected comma-separated numbers x,y or x,y,z (got '" + row + "')");
+      v.push_back(x);
+    }
+    if (const std::string problem = vectorProblem(v, ctx.dim); !problem.empty()) f.fail(where + problem);
+    points.push_back(toVec3(v));
+    lines.push_back(lineNo);
+  }
+  return lines;
+}
+
+void readPolyline(const Field& f, const Context& ctx, GeometryDesc& g) {
+  const Field points = f.child("points"), file = f.child("file");
+  if (points.present() && file.present()) file.fail("give either points or file, not both");
+  if (file.present()) {
+    const std::vector<int> lines = readPolylineCsv(file, ctx, g.points);
+    if (g.points.size() < 2)
+      file.fail("needs at least 2 points (got " + std::to_string(g.points.size()) + ")");
+    for (size_t i = 0; i + 1 < g.points.size(); ++i)
+      if (zeroLength(g.points[i], g.points[i + 1]))
+        file.fail("zero-length segment between lines " + std::to_string(lines[i]) + " and " +
+                  std::to_string(lines[i + 1]) + " of the file");
+    return;
+  }
+  if (!points.present()) points.fail("missing required value (give points or file)");
+  const std::vector<Field> items = points.items();
+  if (items.size() < 2) points.fail("needs at least 2 points (got " + std::to_string(items.size()) + ")");
+  for (const Field& item : items) g.points.push_back(readVector(item, ctx.dim));
+  for (size_t i = 0; i + 1 < g.points.size(); ++i)
+    if (zeroLength(g.points[i], g.points[i + 1]))
+      items[i + 1].fail("zero-length segment (same point as " + items[i].key() + ")");
+}
+
+void readCatenary(const Field& f, const Context& ctx, GeometryDesc& g) {
+  g.start = readVector(f.child("start"), ctx.dim);
+  g.end = readVector(f.child("end"), ctx.dim);
+  if (zeroLength(g.start, g.end)) f.child("end").fail("must differ from start (zero span)");
+  const Field length = f.child("length");
+  g.length = requirePositive(length);
+  const double span = norm(sub(g.end, g.start));
+  if (g.length <= span)
+    length.fail("must exceed the distance between start and end (length " + fmt(g.length, 10) +
+                " <= distance " + fmt(span, 10) + ")");
+  if (const Field sag = f.child("sag_direction"); sag.present()) {
+    g.sagDirection = readDirection(sag, ctx.dim);
+    if (parallelToChord(g.sagDirection, g.start, g.end))
+      sag.fail("must not be parallel to the line from start to end");
+  }
+}
+
+struct GeometryKindInfo {
+  const char* name;
+  GeometryKind value;
+  std::vector<std::string> keys;  // allowed keys for this kind
+  void (*read)(const Field&, const Context&, GeometryDesc&);
+};
+const GeometryKindInfo kGeometryKinds[] = {
+    {"line", GeometryKind::Line, {"kind", "start", "end"}, readLine},
+    {"arc", GeometryKind::Arc, {"kind", "center", "radius", "start_angle", "end_angle", "normal"}, readArc},
+    {"polyline", GeometryKind::Polyline, {"kind", "points", "file"}, readPolyline},
+    {"catenary", GeometryKind::Catenary, {"kind", "start", "end", "length", "sag_direction"}, readCatenary},
+};
+
+GeometryDesc readGeometry(const Field& f, const Context& ctx) {
+  GeometryDesc g;
+  g.mark = f.mark();
+  const GeometryKindInfo& kind = pick(f.child("kind"), "geometry kind", kGeometryKinds);
+  f.expectMap(kind.keys);
+  g.kind = kind.value;
+  kind.read(f, ctx, g);
+  return g;
+}
+
+// Length of the body's centerline in its initial shape [m].
+double bodyLength(const GeometryDesc& g) {
+  switch (g.kind) {
+    case GeometryKind::Line: return norm(sub(g.end, g.start));
+    case GeometryKind::Arc: return g.radius * std::abs(g.endAngle - g.startAngle);
+    case GeometryKind::Catenary: return g.length;
+    case GeometryKind::Polyline: {
+      double sum = 0.0;
+      for (size_t i = 0; i + 1 < g.points.size(); ++i) sum += norm(sub(g.points[i + 1], g.points[i]));
+      return sum;
+    }
+  }
+  return 0.0;
+}
+
+// ------------------------------------------------------------------------------------------------
+// Bodies
+
+void readSection(const Field& f, BodyDesc& body) {
+  std::vector<std::string> keys;
+  for (const SectionKey& k : kSectionKeys) keys.emplace_back(k.name);
+  f.expectMap(keys);
+  for (const SectionKey& k : kSectionKeys) {
+    const Field value = f.child(k.name);
+    if (k.required)
+      body.*k.field = requirePositive(value);
+    else if (value.present())
+      body.*k.field = requireNonNegative(value);
+  }
+}
+
+void readPointMasses(const Field& f, BodyDesc& body) {
+  const double length = bodyLength(body.geometry);
+  for (const Field& item : f.items()) {
+    item.expectMap({"at", "mass"});
+    model::PointMassDesc pm;
+    pm.mark = item.mark();
+    const Field at = item.child("at");
+    pm.at = at.number();
+    if (pm.at < 0.0 || pm.at > length * (1.0 + kRelTol))
+      at.fail("must be within [0, " + fmt(length) + "], the length of body '" + body.name + "' (got " +
+              fmt(pm.at) + ")");
+    pm.mass = requirePositive(item.child("mass"));
+    body.pointMasses.push_back(pm);
+  }
+}
+
+BodyDesc readBody(const Field& f, const Context& ctx) {
+  f.expectMap({"name", "element", "elements", "geometry", "section", "stress_free", "point_masses"});
+  BodyDesc body;
+  body.mark = f.mark();
+  const Field name = f.child("name");
+  body.name = name.text();
+  if (body.name.empty()) name.fail("must not be empty");
+
+  const Field element = f.child("element");
+  const ElementTypeInfo& type = pick(element, "element type", kElementTypes);
+  if (type.dimension != ctx.dim)
+    element.fail(std::string(type.name) + " needs dimension: " + std::to_string(type.dimension) +
+                 " (dimension mismatch: the scene has dimension: " + std::to_string(ctx.dim) + ")");
+  body.type = type.value;
+  body.elements = requireIntAtLeast(f.child("elements"), 1);
+  body.geometry = readGeometry(f.child("geometry"), ctx);
+  readSection(f.child("section"), body);
+
+  if (const Field stressFree = f.child("stress_free"); stressFree.present()) {
+    body.stressFreeInitial = pick(stressFree, "stress_free", kStressFree).value;
+    if (body.stressFreeInitial && ctx.dim != 2)
+      stressFree.fail("'initial' is only allowed when dimension is 2");
+  }
+  if (const Field masses = f.child("point_masses"); masses.present()) readPointMasses(masses, body);
+  return body;
+}
+
+// ------------------------------------------------------------------------------------------------
+// The scene
+
+class SceneParser {
+public:
+  explicit SceneParser(const std::string& file) : ctx_{file, fs::path(file).parent_path(), 3} {
+    scene_.file = file;
+  }
+
+  model::SceneDescription parse(const YAML::Node& rootNode) {
+    const Field root(rootNode, "", ctx_.file, lineOf(rootNode, 1));
+    if (!root.present()) root.fail("the scene is empty; expected a map of scene keys");
+    root.expectMap({"analysis", "dimension", "discretization", "bodies", "supports", "junctions", "loads",
+                    "static", "modes", "output"});
+    scene_.analysis = pick(root.child("analysis"), "analysis", kAnalyses).value;
+    scene_.dimension = ctx_.dim = requireIntInRange(root.child("dimension"), 2, 3);
+    if (const Field f = root.child("discretization"); f.present()) readDiscretization(f);
+    readBodies(root.child("bodies"));
+    if (const Field f = root.child("supports"); f.present()) readSupports(f);
+    if (const Field f = root.child("junctions"); f.present()) readJunctions(f);
+    if (const Field f = root.child("loads"); f.present()) readLoads(f);
+    if (const Field f = root.child("static"); f.present()) {
+      f.expectMap({"load_steps"});
+      if (const Field steps = f.child("load_steps"); steps.present())
+        scene_.statics.loadSteps = requireIntAtLeast(steps, 1);
+    }
+    if (const Field f = root.child("modes"); f.present()) {
+      f.expectMap({"count"});
+      if (const Field count = f.child("count"); count.present())
+        scene_.modes.count = requireIntAtLeast(count, 1);
+    }
+    if (const Field f = root.child("output"); f.present()) readOutput(f);
+    checkCatenaryDefaults();
+    return scene_;
+  }
+
+private:
+  void readDiscretization(const Field& f) {
+    f.expectMap({"slope_scaling", "gauss_points"});
+    if (const Field s = f.child("slope_scaling"); s.present())
+      scene_.discretization.slopeScaling = s.boolean();
+    if (const Field g = f.child("gauss_points"); g.present())
+      scene_.discretization.gaussPoints = requireIntInRange(g, 2, 8);
+  }
+
+  void readBodies(const Field& f) {
+    const std::vector<Field> items = f.items();
+    if (items.empty()) f.fail("needs at least one body");
+    for (const Field& item : items) {
+      BodyDesc body = readBody(item, ctx_);
+      for (const BodyDesc& other : scene_.bodies)
+        if (other.name == body.name)
+          item.child("name").fail("duplicate body name '" + body.name + "' (also " + other.mark.key +
+                                  " on line " + std::to_string(other.mark.line) + ")");
+      scene_.bodies.push_back(std::move(body));
+    }
+  }
+
+  const BodyDesc& findBody(const Field& name) const {
+    const std::string wanted = name.text();
+    std::vector<std::string> names;
+    for (const BodyDesc& b : scene_.bodies) {
+      if (b.name == wanted) return b;
+      names.push_back(b.name);
+    }
+    name.fail("no body named '" + wanted + "'; bodies: " + join(names));
+  }
+
+  // The `body` and `node` keys of `f` (which the caller has checked for allowed keys).
+  NodeRef readNodeRef(const Field& f) const {
+    NodeRef ref;
+    ref.mark = f.mark();
+    const BodyDesc& body = findBody(f.child("body"));
+    ref.body = body.name;
+    const Field node = f.child("node");
+    if (node.isScalar("last")) {
+      ref.node = -1;
+      return ref;
+    }
+    ref.node = node.integer("a node index or 'last'");
+    if (ref.node < 0 || ref.node > body.elements)
+      node.fail("node index out of range: body '" + body.name + "' has nodes 0.." +
+                std::to_string(body.elements) + " or 'last' (got " + std::to_string(ref.node) + ")");
+    return ref;
+  }
+
+  // Node index with `last` resolved, to compare references.
+  long resolvedNode(const NodeRef& ref) const {
+    if (ref.node >= 0) return ref.node;
+    for (const BodyDesc& b : scene_.bodies)
+      if (b.name == ref.body) return b.elements;
+    return ref.node;
+  }
+
+  void readSupports(const Field& f) {
+    const int maxDof = 2 * ctx_.dim - 1;
+    for (const Field& item : f.items()) {
+      item.expectMap({"body", "node", "type", "dofs"});
+      model::SupportDesc s;
+      s.mark = item.mark();
+      s.at = readNodeRef(item);
+      s.type = pick(item.child("type"), "support type", kSupportTypes).value;
+      const Field dofs = item.child("dofs");
+      if (s.type != model::SupportType::Fixed) {
+        if (dofs.present()) dofs.fail("only allowed with type: fixed");
+      } else {
+        if (!dofs.present())
+          dofs.fail("missing required value (type: fixed needs the list of fixed coordinates)");
+        const std::vector<Field> entries = dofs.items();
+        if (entries.empty()) dofs.fail("must list at least one coordinate");
+        for (const Field& entry : entries) {
+          const int dof = requireIntInRange(entry, 0, maxDof);
+          if (std::find(s.dofs.begin(), s.dofs.end(), dof) != s.dofs.end())
+            entry.fail("coordinate " + std::to_string(dof) + " is listed twice");
+          s.dofs.push_back(dof);
+        }
+      }
+      scene_.supports.push_back(std::move(s));
+    }
+  }
+
+  void readJunctions(const Field& f) {
+    for (const Field& item : f.items()) {
+      item.expectMap({"nodes"});
+      model::JunctionDesc j;
+      j.mark = item.mark();
+      const Field nodes = item.child("nodes");
+      const std::vector<Field> entries = nodes.items();
+      if (entries.size() < 2)
+        nodes.fail("needs at least 2 nodes (got " + std::to_string(entries.size()) + ")");
+      for (const Field& entry : entries) {
+        entry.expectMap({"body", "node"});
+        NodeRef ref = readNodeRef(entry);
+        for (const NodeRef& other : j.nodes)
+          if (other.body == ref.body && resolvedNode(other) == resolvedNode(ref))
+            entry.fail("the same node as " + other.mark.key);
+        j.nodes.push_back(std::move(ref));
+      }
+      scene_.junctions.push_back(std::move(j));
+    }
+  }
+
+  void readLoads(const Field& f) {
+    f.expectMap({"gravity", "nodal", "distributed"});
+    if (const Field g = f.child("gravity"); g.present()) scene_.loads.gravity = readVector(g, ctx_.dim);
+    if (const Field nodal = f.child("nodal"); nodal.present()) {
+      for (const Field& item : nodal.items()) {
+        item.expectMap({"body", "node", "force", "moment"});
+        model::NodalLoadDesc load;
+        load.mark = item.mark();
+        load.at = readNodeRef(item);
+        if (const Field force = item.child("force"); force.present())
+          load.force = readVector(force, ctx_.dim);
+        if (const Field moment = item.child("moment"); moment.present())
+          load.moment = readMoment(moment, ctx_.dim);
+        scene_.loads.nodal.push_back(std::move(load));
+      }
+    }
+    if (const Field distributed = f.child("distributed"); distributed.present()) {
+      for (const Field& item : distributed.items()) {
+        item.expectMap({"body", "force_per_length"});
+        model::DistributedLoadDesc load;
+        load.mark = item.mark();
+        load.body = findBody(item.child("body")).name;
+        load.forcePerLength = readVector(item.child("force_per_length"), ctx_.dim);
+        scene_.loads.distributed.push_back(std::move(load));
+      }
+    }
+  }
+
+  void readOutput(const Field& f) {
+    f.expectMap({"file", "samples_per_element"});
+    if (const Field file = f.child("file"); file.present()) {
+      scene_.output.file = file.text();
+      if (scene_.output.file.empty()) file.fail("must not be empty");
+    }
+    if (const Field samples = f.child("samples_per_element"); samples.present())
+      scene_.output.samplesPerElement = requireIntAtLeast(samples, 1);
+  }
+
+  // A catenary without sag_direction hangs along gravity (or -y / -z without gravity); that
+  // direction must not be parallel to its chord.
+  void checkCatenaryDefaults() const {
+    const Vec3& g = scene_.loads.gravity;
+    const bool hasGravity = norm(g) > 0.0;
+    const Vec3 down = hasGravity ? scaled(g, 1.0 / norm(g)) : ctx_.dim == 2 ? Vec3{0, -1, 0} : Vec3{0, 0, -1};
+    const std::string downName = hasGravity ? "gravity" : ctx_.dim == 2 ? "-y" : "-z";
+    for (const BodyDesc& b : scene_.bodies) {
+      const GeometryDesc& geo = b.geometry;
+      if (geo.kind == GeometryKind::Catenary && norm(geo.sagDirection) == 0.0 &&
+          parallelToChord(down, geo.start, geo.end))
+        failAt(geo.mark, "the default sag direction (" + downName +
+                             ") is parallel to the line from start to end; give sag_direction");
+    }
+  }
+
+  Context ctx_;
+  model::SceneDescription scene_;
+};
+
+}  // namespace
+
+model::SceneDescription parseScene(const std::string& yamlText, const std::string& fileNameForMessages) {
+  const std::string& file = fileNameForMessages;
+  YAML::Node root;
+  try {
+    root = YAML::Load(yamlText);
+  } catch (const YAML::Exception& e) {
+    throw InputError(file + ":" + std::to_string(e.mark.line + 1) + ": (syntax): " + e.msg);
+  }
+  try {
+    return SceneParser(file).parse(root);
+  } catch (const YAML::Exception& e) {  // not expected: Field turns YAML errors into InputError
+    throw InputError(file + ":" + std::to_string(e.mark.line + 1) + ": (yaml): " + e.msg);
+  }
+}
+
+model::SceneDescription readScene(const std::string& path) {
+  std::error_code ec;
+  const bool isDir = fs::is_directory(path, ec);
+  std::ifstream in(path, std::ios::binary);
+  if (!in || isDir) {
+    const std::string why = isDir ? " (it is a directory)" : !fs::exists(path, ec) ? " (no such file)" : "";
+    throw InputError(path + ":0: (file): cannot open scene file '" + path + "'" + why);
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseScene(text.str(), path);
+}
+
+}  // namespace strand::io

@@ -1,0 +1,707 @@
+// requirement: the scene reader turns a valid YAML scene into a SceneDescription with every value and
+// source mark in place, and rejects every invalid scene with "<file>:<line>: <key>: <reason>"
+// (docs/scene-reference.md lists the keys and rules checked here).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "strand/core/Error.hpp"
+#include "strand/io/SceneReader.hpp"
+
+namespace fs = std::filesystem;
+using namespace strand;
+using namespace strand::model;
+using strand::io::parseScene;
+using strand::io::readScene;
+
+namespace {
+
+// A minimal valid 3D scene; the error tests change one thing in it. Line numbers matter.
+const std::string kBase3d =                                           // line
+    "analysis: static\n"                                              // 1
+    "dimension: 3\n"                                                  // 2
+    "bodies:\n"                                                       // 3
+    "  - name: cable\n"                                               // 4
+    "    element: AncfCable3d\n"                                      // 5
+    "    elements: 20\n"                                              // 6
+    "    geometry: {kind: line, start: [0, 0, 0], end: [2, 0, 0]}\n"  // 7
+    "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}\n"  // 8
+    "supports:\n"                                                     // 9
+    "  - {body: cable, node: 0, type: clamped}\n"                     // 10
+    "loads:\n"                                                        // 11
+    "  nodal: [{body: cable, node: last, force: [0, 0, -1]}]\n";      // 12
+
+// The same in 2D.
+const std::string kBase2d =
+    "analysis: static\n"                                              // 1
+    "dimension: 2\n"                                                  // 2
+    "bodies:\n"                                                       // 3
+    "  - name: cable\n"                                               // 4
+    "    element: AncfCable2d\n"                                      // 5
+    "    elements: 20\n"                                              // 6
+    "    geometry: {kind: line, start: [0, 0], end: [2, 0]}\n"        // 7
+    "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}\n"  // 8
+    "supports:\n"                                                     // 9
+    "  - {body: cable, node: 0, type: clamped}\n"                     // 10
+    "loads:\n"                                                        // 11
+    "  nodal: [{body: cable, node: last, force: [0, -1]}]\n";         // 12
+
+// `text` with the single occurrence of `from` replaced by `to`.
+std::string edit(const std::string& text, const std::string& from, const std::string& to) {
+  const auto pos = text.find(from);
+  EXPECT_NE(pos, std::string::npos) << "'" << from << "' not in the scene";
+  EXPECT_EQ(text.find(from, pos + 1), std::string::npos) << "'" << from << "' is not unique";
+  if (pos == std::string::npos) return text;
+  return text.substr(0, pos) + to + text.substr(pos + from.size());
+}
+
+// The message of the InputError that `read` throws, or "" if it throws none.
+template <class Read>
+std::string errorOf(Read read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Succeeds when parsing `yaml` as "scene.yaml" throws an InputError whose message starts with
+// "scene.yaml:<line>: <key>: " and contains `word`.
+::testing::AssertionResult failsWith(const std::string& yaml, int line, const std::string& key,
+                                     const std::string& word) {
+  const std::string msg = errorOf([&] { parseScene(yaml, "scene.yaml"); });
+  const std::string prefix = "scene.yaml:" + std::to_string(line) + ": " + key + ": ";
+  if (msg.empty()) return ::testing::AssertionFailure() << "no InputError for:\n" << yaml;
+  if (msg.rfind(prefix, 0) != 0 || msg.find(word, prefix.size()) == std::string::npos)
+    return ::testing::AssertionFailure() << "message '" << msg << "' does not start with '" << prefix << "' or lacks '"
+                                         << word << "'";
+  return ::testing::AssertionSuccess() << msg;
+}
+
+// A temporary directory for scene and CSV files, removed at the end of each test.
+class SceneFiles : public ::testing::Test {
+protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("strand_scene_reader_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) const {
+    const fs::path p = dir_ / name;
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  fs::path dir_;
+};
+
+void expectVec(const Vec3& v, double x, double y, double z) {
+  EXPECT_DOUBLE_EQ(v[0], x);
+  EXPECT_DOUBLE_EQ(v[1], y);
+  EXPECT_DOUBLE_EQ(v[2], z);
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------
+// Valid scenes
+
+TEST(SceneReader, FullScene3dParsesEveryValue) {
+  const std::string yaml =
+      "# every key once\n"                                                                   // 1
+      "analysis: modes\n"                                                                    // 2
+      "dimension: 3\n"                                                                       // 3
+      "discretization: {slope_scaling: false, gauss_points: 4}\n"                            // 4
+      "bodies:\n"                                                                            // 5
+      "  - name: a\n"                                                                        // 6
+      "    element: AncfCable3d\n"                                                           // 7
+      "    elements: 10\n"                                                                   // 8
+      "    geometry: {kind: line, start: [0, 0, 0], end: [3, 4, 0]}\n"                       // 9
+      "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850, damping_axial: 0.01,\n"  // 10
+      "              damping_bending: 0.02}\n"                                               // 11
+      "    point_masses:\n"                                                                  // 12
+      "      - {at: 2.5, mass: 1.5}\n"                                                       // 13
+      "      - {at: 5, mass: 0.25}\n"                                                        // 14
+      "  - name: b\n"                                                                        // 15
+      "    element: AncfCable3d\n"                                                           // 16
+      "    elements: 8\n"                                                                    // 17
+      "    geometry:\n"                                                                      // 18
+      "      kind: arc\n"                                                                    // 19
+      "      center: [3, 4, 1]\n"                                                            // 20
+      "      radius: 1\n"                                                                    // 21
+      "      start_angle: -1.5707963267948966\n"                                             // 22
+      "      end_angle: 0\n"                                                                 // 23
+      "      normal: [0, 2, 0]\n"                                                            // 24
+      "    section: {E: 1e9, A: 1e-4, I: 1e-9, rho: 1000}\n"                                 // 25
+      "    point_masses: [{at: 1.5707963267948966, mass: 2}]\n"                              // 26
+      "  - name: c\n"                                                                        // 27
+      "    element: AncfCable3d\n"                                                           // 28
+      "    elements: 6\n"                                                                    // 29
+      "    geometry:\n"                                                                      // 30
+      "      kind: polyline\n"                                                               // 31
+      "      points: [[0, 0, 0], [1, 0, 0], [1, 1, 0]]\n"                                    // 32
+      "    section: {E: 1e9, A: 1e-4, I: 1e-9, rho: 1000}\n"                                 // 33
+      "    stress_free: straight\n"                                                          // 34
+      "    point_masses: [{at: 2, mass: 3}]\n"                                               // 35
+      "  - name: d\n"                                                                        // 36
+      "    element: AncfCable3d\n"                                                           // 37
+      "    elements: 12\n"                                                                   // 38
+      "    geometry: {kind: catenary, start: [0, 0, 0], end: [10, 0, 0], length: 12,\n"      // 39
+      "               sag_direction: [0, 0, -2]}\n"                                          // 40
+      "    section: {E: 1e9, A: 1e-4, I: 1e-9, rho: 1000}\n"                                 // 41
+      "supports:\n"                                                                          // 42
+      "  - {body: a, node: 0, type: clamped}\n"                                              // 43
+      "  - {body: b, node: last, type: pinned}\n"                                            // 44
+      "  - {body: d, node: 12, type: fixed, dofs: [1, 2, 5]}\n"                              // 45
+      "junctions:\n"                                                                         // 46
+      "  - nodes: [{body: a, node: last}, {body: b, node: 0}]\n"                             // 47
+      "loads:\n"                                                                             // 48
+      "  gravity: [0, 0, -9.81]\n"                                                           // 49
+      "  nodal:\n"                                                                           // 50
+      "    - {body: a, node: 5, force: [1, 2, 3], moment: [4, 5, 6]}\n"                      // 51
+      "    - {body: c, node: last, force: [0, 0, -1]}\n"                                     // 52
+      "  distributed:\n"                                                                     // 53
+      "    - {body: d, force_per_length: [0, 0, -2]}\n"                                      // 54
+      "static: {load_steps: 10}\n"                                                           // 55
+      "modes: {count: 8}\n"                                                                  // 56
+      "output: {file: out.h5, samples_per_element: 3}\n";                                    // 57
+  const SceneDescription s = parseScene(yaml, "dir/full.yaml");
+
+  EXPECT_EQ(s.file, "dir/full.yaml");
+  EXPECT_EQ(s.analysis, Analysis::Modes);
+  EXPECT_EQ(s.dimension, 3);
+  EXPECT_FALSE(s.discretization.slopeScaling);
+  EXPECT_EQ(s.discretization.gaussPoints, 4);
+  ASSERT_EQ(s.bodies.size(), 4u);
+
+  const BodyDesc& a = s.bodies[0];
+  EXPECT_EQ(a.name, "a");
+  EXPECT_EQ(a.type, ElementType::AncfCable3d);
+  EXPECT_EQ(a.elements, 10);
+  EXPECT_EQ(a.geometry.kind, GeometryKind::Line);
+  expectVec(a.geometry.start, 0, 0, 0);
+  expectVec(a.geometry.end, 3, 4, 0);
+  EXPECT_DOUBLE_EQ(a.E, 2.1e11);
+  EXPECT_DOUBLE_EQ(a.A, 7.85e-5);
+  EXPECT_DOUBLE_EQ(a.I, 4.91e-10);
+  EXPECT_DOUBLE_EQ(a.rho, 7850);
+  EXPECT_DOUBLE_EQ(a.dampAxial, 0.01);
+  EXPECT_DOUBLE_EQ(a.dampBending, 0.02);
+  EXPECT_FALSE(a.stressFreeInitial);
+  ASSERT_EQ(a.pointMasses.size(), 2u);
+  EXPECT_DOUBLE_EQ(a.pointMasses[0].at, 2.5);
+  EXPECT_DOUBLE_EQ(a.pointMasses[0].mass, 1.5);
+  EXPECT_DOUBLE_EQ(a.pointMasses[1].at, 5.0);  // exactly the body length: allowed
+  EXPECT_DOUBLE_EQ(a.pointMasses[1].mass, 0.25);
+  EXPECT_EQ(a.mark.where(), "dir/full.yaml:6: bodies[0]");
+  EXPECT_EQ(a.geometry.mark.where(), "dir/full.yaml:9: bodies[0].geometry");
+  EXPECT_EQ(a.pointMasses[1].mark.where(), "dir/full.yaml:14: bodies[0].point_masses[1]");
+
+  const BodyDesc& b = s.bodies[1];
+  EXPECT_EQ(b.geometry.kind, GeometryKind::Arc);
+  expectVec(b.geometry.center, 3, 4, 1);
+  EXPECT_DOUBLE_EQ(b.geometry.radius, 1.0);
+  EXPECT_DOUBLE_EQ(b.geometry.startAngle, -M_PI / 2);
+  EXPECT_DOUBLE_EQ(b.geometry.endAngle, 0.0);
+  expectVec(b.geometry.normal, 0, 1, 0);  // normalized
+  EXPECT_DOUBLE_EQ(b.E, 1e9);
+  EXPECT_DOUBLE_EQ(b.dampAxial, 0.0);
+  EXPECT_DOUBLE_EQ(b.pointMasses.at(0).at, M_PI / 2);  // the arc length
+  EXPECT_EQ(b.geometry.mark.line, 18);  // the line of the key
+
+  const BodyDesc& c = s.bodies[2];
+  EXPECT_EQ(c.geometry.kind, GeometryKind::Polyline);
+  ASSERT_EQ(c.geometry.points.size(), 3u);
+  expectVec(c.geometry.points[2], 1, 1, 0);
+  EXPECT_DOUBLE_EQ(c.pointMasses.at(0).at, 2.0);  // the polyline length
+
+  const BodyDesc& d = s.bodies[3];
+  EXPECT_EQ(d.geometry.kind, GeometryKind::Catenary);
+  expectVec(d.geometry.start, 0, 0, 0);
+  expectVec(d.geometry.end, 10, 0, 0);
+  EXPECT_DOUBLE_EQ(d.geometry.length, 12.0);
+  expectVec(d.geometry.sagDirection, 0, 0, -1);  // normalized
+
+  ASSERT_EQ(s.supports.size(), 3u);
+  EXPECT_EQ(s.supports[0].at.body, "a");
+  EXPECT_EQ(s.supports[0].at.node, 0);
+  EXPECT_EQ(s.supports[0].type, SupportType::Clamped);
+  EXPECT_EQ(s.supports[1].at.body, "b");
+  EXPECT_EQ(s.supports[1].at.node, -1);  // last
+  EXPECT_EQ(s.supports[1].type, SupportType::Pinned);
+  EXPECT_TRUE(s.supports[1].dofs.empty());
+  EXPECT_EQ(s.supports[2].at.node, 12);
+  EXPECT_EQ(s.supports[2].type, SupportType::Fixed);
+  EXPECT_EQ(s.supports[2].dofs, (std::vector<int>{1, 2, 5}));
+  EXPECT_EQ(s.supports[2].mark.where(), "dir/full.yaml:45: supports[2]");
+  EXPECT_EQ(s.supports[2].at.mark.line, 45);
+
+  ASSERT_EQ(s.junctions.size(), 1u);
+  ASSERT_EQ(s.junctions[0].nodes.size(), 2u);
+  EXPECT_EQ(s.junctions[0].nodes[0].body, "a");
+  EXPECT_EQ(s.junctions[0].nodes[0].node, -1);
+  EXPECT_EQ(s.junctions[0].nodes[1].body, "b");
+  EXPECT_EQ(s.junctions[0].nodes[1].node, 0);
+  EXPECT_EQ(s.junctions[0].mark.where(), "dir/full.yaml:47: junctions[0]");
+  EXPECT_EQ(s.junctions[0].nodes[1].mark.key, "junctions[0].nodes[1]");
+
+  expectVec(s.loads.gravity, 0, 0, -9.81);
+  ASSERT_EQ(s.loads.nodal.size(), 2u);
+  EXPECT_EQ(s.loads.nodal[0].at.body, "a");
+  EXPECT_EQ(s.loads.nodal[0].at.node, 5);
+  expectVec(s.loads.nodal[0].force, 1, 2, 3);
+  expectVec(s.loads.nodal[0].moment, 4, 5, 6);
+  EXPECT_EQ(s.loads.nodal[1].at.node, -1);
+  expectVec(s.loads.nodal[1].moment, 0, 0, 0);  // default
+  EXPECT_EQ(s.loads.nodal[1].mark.where(), "dir/full.yaml:52: loads.nodal[1]");
+  ASSERT_EQ(s.loads.distributed.size(), 1u);
+  EXPECT_EQ(s.loads.distributed[0].body, "d");
+  expectVec(s.loads.distributed[0].forcePerLength, 0, 0, -2);
+  EXPECT_EQ(s.loads.distributed[0].mark.line, 54);
+
+  EXPECT_EQ(s.statics.loadSteps, 10);
+  EXPECT_EQ(s.modes.count, 8);
+  EXPECT_EQ(s.output.file, "out.h5");
+  EXPECT_EQ(s.output.samplesPerElement, 3);
+}
+
+TEST(SceneReader, MinimalSceneGetsDefaults) {
+  const SceneDescription s = parseScene(kBase3d, "scene.yaml");
+  EXPECT_EQ(s.analysis, Analysis::Static);
+  EXPECT_TRUE(s.discretization.slopeScaling);
+  EXPECT_EQ(s.discretization.gaussPoints, 5);
+  EXPECT_EQ(s.statics.loadSteps, 1);
+  EXPECT_EQ(s.modes.count, 6);
+  EXPECT_EQ(s.output.file, "");
+  EXPECT_EQ(s.output.samplesPerElement, 4);
+  expectVec(s.loads.gravity, 0, 0, 0);
+  EXPECT_TRUE(s.junctions.empty());
+  EXPECT_TRUE(s.loads.distributed.empty());
+  const BodyDesc& b = s.bodies.at(0);
+  EXPECT_DOUBLE_EQ(b.dampAxial, 0.0);
+  EXPECT_DOUBLE_EQ(b.dampBending, 0.0);
+  EXPECT_FALSE(b.stressFreeInitial);
+  EXPECT_TRUE(b.pointMasses.empty());
+  expectVec(b.geometry.sagDirection, 0, 0, 0);
+}
+
+TEST(SceneReader, Scene2dAcceptsTwoEntryVectorsScalarMomentsAndInitialStressFree) {
+  const std::string yaml =
+      "analysis: static\n"
+      "dimension: 2\n"
+      "bodies:\n"
+      "  - name: ring\n"
+      "    element: AncfCable2d\n"
+      "    elements: 4\n"
+      "    geometry: {kind: arc, center: [1, 2], radius: 2, start_angle: 0, end_angle: 3.141592653589793}\n"
+      "    section: {E: 1e9, A: 1e-4, I: 1e-9, rho: 1000}\n"
+      "    stress_free: initial\n"
+      "  - name: hang\n"
+      "    element: AncfCable2d\n"
+      "    elements: 4\n"
+      "    geometry: {kind: catenary, start: [0, 0, 0], end: [4, 0], length: 5}\n"
+      "    section: {E: 1e9, A: 1e-4, I: 1e-9, rho: 1000}\n"
+      "supports:\n"
+      "  - {body: ring, node: 0, type: fixed, dofs: [0, 1, 3]}\n"
+      "loads:\n"
+      "  gravity: [0, -9.81]\n"
+      "  nodal:\n"
+      "    - {body: ring, node: last, force: [1, 2, 0], moment: 7}\n"
+      "    - {body: ring, node: 2, moment: [0, 0, -3]}\n";
+  const SceneDescription s = parseScene(yaml, "ring.yaml");
+  EXPECT_EQ(s.dimension, 2);
+  ASSERT_EQ(s.bodies.size(), 2u);
+  EXPECT_EQ(s.bodies[0].type, ElementType::AncfCable2d);
+  EXPECT_TRUE(s.bodies[0].stressFreeInitial);
+  expectVec(s.bodies[0].geometry.center, 1, 2, 0);
+  expectVec(s.bodies[0].geometry.normal, 0, 0, 1);  // default
+  expectVec(s.bodies[1].geometry.start, 0, 0, 0);
+  expectVec(s.bodies[1].geometry.end, 4, 0, 0);
+  EXPECT_EQ(s.supports.at(0).dofs, (std::vector<int>{0, 1, 3}));
+  expectVec(s.loads.gravity, 0, -9.81, 0);
+  expectVec(s.loads.nodal.at(0).force, 1, 2, 0);
+  expectVec(s.loads.nodal.at(0).moment, 0, 0, 7);
+  expectVec(s.loads.nodal.at(1).moment, 0, 0, -3);
+}
+
+TEST_F(SceneFiles, ReadSceneReadsAPolylineCsvRelativeToTheSceneFile) {
+  write("shapes/route.csv",
+        "# x, y, z\n"
+        "0, 0, 0\n"
+        "\n"
+        "1.5,0,0   # corner\n"
+        "1.5, 2, 1e-1\n");
+  const std::string path =
+      write("scenes/../shapes/route.yaml",  // the CSV is next to the scene
+            edit(kBase3d, "{kind: line, start: [0, 0, 0], end: [2, 0, 0]}", "{kind: polyline, file: route.csv}"));
+  const SceneDescription s = readScene(path);
+  EXPECT_EQ(s.file, path);
+  const GeometryDesc& g = s.bodies.at(0).geometry;
+  EXPECT_EQ(g.kind, GeometryKind::Polyline);
+  ASSERT_EQ(g.points.size(), 3u);
+  expectVec(g.points[0], 0, 0, 0);
+  expectVec(g.points[1], 1.5, 0, 0);
+  expectVec(g.points[2], 1.5, 2, 0.1);
+}
+
+TEST_F(SceneFiles, ReadSceneAcceptsTwoColumnCsvIn2d) {
+  write("route.csv", "0,0\n1,0\n1,1\n");
+  const std::string path =
+      write("s.yaml", edit(kBase2d, "{kind: line, start: [0, 0], end: [2, 0]}", "{kind: polyline, file: route.csv}"));
+  const SceneDescription s = readScene(path);
+  ASSERT_EQ(s.bodies.at(0).geometry.points.size(), 3u);
+  expectVec(s.bodies[0].geometry.points[2], 1, 1, 0);
+}
+
+// ------------------------------------------------------------------------------------------------
+// Files and syntax
+
+TEST_F(SceneFiles, MissingSceneFileNamesThePath) {
+  const std::string path = (dir_ / "nope.yaml").string();
+  const std::string msg = errorOf([&] { readScene(path); });
+  EXPECT_NE(msg.find("cannot open scene file '" + path + "'"), std::string::npos) << msg;
+  EXPECT_EQ(msg.rfind(path + ":", 0), 0u) << msg;
+}
+
+TEST_F(SceneFiles, ErrorsFromReadSceneNameTheGivenPath) {
+  const std::string path = write("bad.yaml", edit(kBase3d, "E: 2.1e11", "E: -2e11"));
+  EXPECT_EQ(errorOf([&] { readScene(path); }), path + ":8: bodies[0].section.E: must be positive (got -2e+11)");
+}
+
+TEST(SceneReader, SyntaxErrorGivesTheParserLine) {
+  EXPECT_TRUE(failsWith(edit(kBase3d, "end: [2, 0, 0]}", "end: [2, 0, 0}"), 7, "(syntax)", "illegal flow end"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "    elements: 20", "\telements: 20"), 6, "(syntax)", "tab"));
+}
+
+TEST(SceneReader, EmptyOrNonMapSceneIsRejected) {
+  EXPECT_TRUE(failsWith("", 1, "(root)", "empty"));
+  EXPECT_TRUE(failsWith("# only a comment\n", 1, "(root)", "empty"));
+  EXPECT_TRUE(failsWith("- a\n- b\n", 1, "(root)", "expected a map"));
+}
+
+// ------------------------------------------------------------------------------------------------
+// Keys
+
+TEST(SceneReader, UnknownKeysAreRejectedAtEveryLevel) {
+  EXPECT_TRUE(failsWith(edit(kBase3d, "analysis: static", "analysis: static\nsolver: newton"), 2, "solver",
+                        "unknown key; allowed: analysis, dimension, discretization, bodies"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "rho: 7850", "rho: 7850, Young: 1"), 8, "bodies[0].section.Young",
+                        "unknown key; allowed: E, A, I, rho, damping_axial, damping_bending"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "    elements: 20", "    elements: 20\n    color: red"), 7, "bodies[0].color",
+                        "unknown key"));
+  // keys of another geometry kind
+  EXPECT_TRUE(failsWith(edit(kBase3d, "end: [2, 0, 0]}", "end: [2, 0, 0], radius: 1}"), 7, "bodies[0].geometry.radius",
+                        "unknown key; allowed: kind, start, end"));
+  EXPECT_TRUE(
+      failsWith(edit(kBase3d, "type: clamped}", "type: clamped, torque: 1}"), 10, "supports[0].torque", "unknown key"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "force: [0, 0, -1]}", "forces: [0, 0, -1]}"), 12, "loads.nodal[0].forces",
+                        "unknown key; allowed: body, node, force, moment"));
+  EXPECT_TRUE(failsWith(kBase3d + "static: {steps: 3}\n", 13, "static.steps", "unknown key; allowed: load_steps"));
+}
+
+TEST(SceneReader, DuplicateKeysAreRejected) {
+  EXPECT_TRUE(failsWith(edit(kBase3d, "dimension: 3", "dimension: 3\ndimension: 2"), 3, "dimension",
+                        "duplicate key (first given on line 2)"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "rho: 7850", "rho: 7850, A: 1"), 8, "bodies[0].section.A", "duplicate key"));
+}
+
+TEST(SceneReader, WrongTypesAreRejected) {
+  EXPECT_TRUE(
+      failsWith(edit(kBase3d, "E: 2.1e11", "E: steel"), 8, "bodies[0].section.E", "expected a number (got 'steel')"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "E: 2.1e11", "E: .inf"), 8, "bodies[0].section.E", "finite"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "elements: 20", "elements: 2.5"), 6, "bodies[0].elements",
+                        "expected an integer (got '2.5')"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "dimension: 3", "dimension: three"), 2, "dimension", "expected an integer"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "start: [0, 0, 0]", "start: 0"), 7, "bodies[0].geometry.start",
+                        "expected a list (got '0')"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "start: [0, 0, 0]", "start: [0, zero, 0]"), 7, "bodies[0].geometry.start[1]",
+                        "expected a number"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}", "    section: 5"),
+                        8, "bodies[0].section", "expected a map (got '5')"));
+  EXPECT_TRUE(
+      failsWith(edit(kBase3d, "name: cable", "name: [cable]"), 4, "bodies[0].name", "expected a string (got a list)"));
+  EXPECT_TRUE(failsWith("analysis: static\ndimension: 3\nbodies: {}\n", 3, "bodies", "expected a list (got a map)"));
+  EXPECT_TRUE(failsWith(kBase3d + "discretization: {slope_scaling: maybe}\n", 13, "discretization.slope_scaling",
+                        "expected true or false"));
+}
+
+TEST(SceneReader, VectorsOfTheWrongLengthAreRejected) {
+  EXPECT_TRUE(failsWith(edit(kBase3d, "end: [2, 0, 0]", "end: [2, 0]"), 7, "bodies[0].geometry.end",
+                        "expected 3 numbers (got 2)"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "force: [0, 0, -1]", "force: [0, 0, -1, 0]"), 12, "loads.nodal[0].force",
+                        "expected 3 numbers (got 4)"));
+  EXPECT_TRUE(failsWith(edit(kBase2d, "end: [2, 0]", "end: [2, 0, 0, 0]"), 7, "bodies[0].geometry.end",
+                        "expected 2 or 3 numbers (got 4)"));
+  EXPECT_TRUE(failsWith(edit(kBase2d, "end: [2, 0]", "end: [2]"), 7, "bodies[0].geometry.end",
+                        "expected 2 or 3 numbers (got 1)"));
+  EXPECT_TRUE(failsWith(edit(kBase2d, "end: [2, 0]", "end: [2, 0, 1]"), 7, "bodies[0].geometry.end",
+                        "the third number must be 0 in a 2D scene (got 1)"));
+  EXPECT_TRUE(failsWith(edit(kBase2d, "force: [0, -1]}", "moment: [1, 0]}"), 12, "loads.nodal[0].moment",
+                        "a 2D moment acts about z"));
+  EXPECT_TRUE(failsWith(edit(kBase2d, "force: [0, -1]}", "moment: [1, 0, 2]}"), 12, "loads.nodal[0].moment",
+                        "a 2D moment acts about z"));
+}
+
+TEST(SceneReader, MissingRequiredValuesAreRejected) {
+  EXPECT_TRUE(failsWith(edit(kBase3d, "E: 2.1e11, ", ""), 8, "bodies[0].section.E", "missing required value"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "E: 2.1e11, ", "E: , "), 8, "bodies[0].section.E", "missing required value"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "analysis: static\n", ""), 1, "analysis", "missing required value"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "dimension: 3\n", ""), 1, "dimension", "missing required value"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "name: cable\n    ", ""), 4, "bodies[0].name", "missing required value"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "    elements: 20\n", ""), 4, "bodies[0].elements", "missing"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "kind: line, ", ""), 7, "bodies[0].geometry.kind", "missing"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, ", end: [2, 0, 0]", ""), 7, "bodies[0].geometry.end", "missing"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}\n", ""), 4,
+                        "bodies[0].section", "missing"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, ", type: clamped", ""), 10, "supports[0].type", "missing"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "node: 0, ", ""), 10, "supports[0].node", "missing"));
+  EXPECT_TRUE(failsWith("analysis: static\ndimension: 3\n", 1, "bodies", "missing required value"));
+  EXPECT_TRUE(failsWith("analysis: static\ndimension: 3\nbodies: []\n", 3, "bodies", "at least one body"));
+  EXPECT_TRUE(
+      failsWith(kBase3d + "  distributed: [{body: cable}]\n", 13, "loads.distributed[0].force_per_length", "missing"));
+}
+
+// ------------------------------------------------------------------------------------------------
+// Ranges
+
+TEST(SceneReader, NonPositiveSectionValuesAreRejected) {
+  const std::string msg = errorOf([] { parseScene(edit(kBase3d, "E: 2.1e11", "E: -2e11"), "cable.yaml"); });
+  EXPECT_EQ(msg, "cable.yaml:8: bodies[0].section.E: must be positive (got -2e+11)");
+  EXPECT_TRUE(failsWith(edit(kBase3d, "A: 7.85e-5", "A: 0"), 8, "bodies[0].section.A", "must be positive (got 0)"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "I: 4.91e-10", "I: -1"), 8, "bodies[0].section.I", "must be positive"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "rho: 7850", "rho: 0.0"), 8, "bodies[0].section.rho", "must be positive"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "rho: 7850", "rho: 7850, damping_axial: -0.1"), 8,
+                        "bodies[0].section.damping_axial", "must not be negative (got -0.1)"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "rho: 7850", "rho: 7850, damping_bending: -1"), 8,
+                        "bodies[0].section.damping_bending", "must not be negative"));
+}
+
+TEST(SceneReader, CountsOutOfRangeAreRejected) {
+  EXPECT_TRUE(
+      failsWith(edit(kBase3d, "elements: 20", "elements: 0"), 6, "bodies[0].elements", "must be at least 1 (got 0)"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "dimension: 3", "dimension: 4"), 2, "dimension", "must be 2 or 3 (got 4)"));
+  EXPECT_TRUE(failsWith(kBase3d + "discretization: {gauss_points: 9}\n", 13, "discretization.gauss_points",
+                        "must be 2..8 (got 9)"));
+  EXPECT_TRUE(failsWith(kBase3d + "static: {load_steps: 0}\n", 13, "static.load_steps", "at least 1"));
+  EXPECT_TRUE(failsWith(kBase3d + "modes: {count: -2}\n", 13, "modes.count", "at least 1"));
+  EXPECT_TRUE(
+      failsWith(kBase3d + "output: {samples_per_element: 0}\n", 13, "output.samples_per_element", "at least 1"));
+  EXPECT_TRUE(failsWith(kBase3d + "output: {file: ''}\n", 13, "output.file", "empty"));
+}
+
+TEST(SceneReader, PointMassesAreCheckedAgainstTheBodyLength) {
+  const std::string withMass = edit(kBase3d, "rho: 7850}\n", "rho: 7850}\n    point_masses: [{at: AT, mass: M}]\n");
+  EXPECT_NO_THROW(parseScene(edit(edit(withMass, "AT", "2"), "M", "1"), "scene.yaml"));
+  EXPECT_TRUE(failsWith(edit(edit(withMass, "AT", "2.1"), "M", "1"), 9, "bodies[0].point_masses[0].at",
+                        "must be within [0, 2]"));
+  EXPECT_TRUE(
+      failsWith(edit(edit(withMass, "AT", "-0.5"), "M", "1"), 9, "bodies[0].point_masses[0].at", "must be within"));
+  EXPECT_TRUE(
+      failsWith(edit(edit(withMass, "AT", "1"), "M", "0"), 9, "bodies[0].point_masses[0].mass", "must be positive"));
+  EXPECT_TRUE(
+      failsWith(edit(edit(withMass, "AT", "1"), "M", "-3"), 9, "bodies[0].point_masses[0].mass", "must be positive"));
+  // arc length of a half circle of radius 2 is 2*pi
+  const std::string arc = edit(edit(withMass, "{kind: line, start: [0, 0, 0], end: [2, 0, 0]}",
+                                    "{kind: arc, center: [0, 0, 0], radius: 2, start_angle: 0, end_angle: -3.14159}"),
+                               "M", "1");
+  EXPECT_NO_THROW(parseScene(edit(arc, "AT", "6.28"), "scene.yaml"));
+  EXPECT_TRUE(failsWith(edit(arc, "AT", "6.3"), 9, "bodies[0].point_masses[0].at", "must be within [0, 6.28318]"));
+}
+
+// ------------------------------------------------------------------------------------------------
+// Geometry
+
+const std::string kLine = "{kind: line, start: [0, 0, 0], end: [2, 0, 0]}";
+
+TEST(SceneReader, LineNeedsTwoDistinctEnds) {
+  EXPECT_TRUE(failsWith(edit(kBase3d, kLine, "{kind: line, start: [1, 1, 1], end: [1, 1, 1]}"), 7,
+                        "bodies[0].geometry.end", "zero length"));
+}
+
+TEST(SceneReader, ArcChecks) {
+  const std::string arc = "{kind: arc, center: [0, 0, 0], radius: R, start_angle: 0.5, end_angle: A1}";
+  const auto scene = [&](const std::string& r, const std::string& a1) {
+    return edit(kBase3d, kLine, edit(edit(arc, "R", r), "A1", a1));
+  };
+  EXPECT_NO_THROW(parseScene(scene("1", "2"), "scene.yaml"));
+  EXPECT_TRUE(failsWith(scene("1", "0.5"), 7, "bodies[0].geometry.end_angle", "must differ from start_angle"));
+  EXPECT_TRUE(failsWith(scene("0", "2"), 7, "bodies[0].geometry.radius", "must be positive (got 0)"));
+  EXPECT_TRUE(failsWith(scene("-1", "2"), 7, "bodies[0].geometry.radius", "must be positive"));
+  EXPECT_TRUE(failsWith(scene("1", "7"), 7, "bodies[0].geometry.end_angle", "more than once"));
+  EXPECT_TRUE(failsWith(scene("1", "2, normal: [0, 0, 0]"), 7, "bodies[0].geometry.normal", "zero vector"));
+  EXPECT_TRUE(failsWith(edit(kBase2d, "{kind: line, start: [0, 0], end: [2, 0]}",
+                             "{kind: arc, center: [0, 0], radius: 1, start_angle: 0, end_angle: 1, normal: [0, 0, 1]}"),
+                        7, "bodies[0].geometry.normal", "only allowed when dimension is 3"));
+}
+
+TEST(SceneReader, CatenaryChecks) {
+  const std::string cat = "{kind: catenary, start: [0, 0, 0], end: [3, 4, 0], length: L}";
+  EXPECT_NO_THROW(parseScene(edit(kBase3d, kLine, edit(cat, "L", "5.01")), "scene.yaml"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, kLine, edit(cat, "L", "5")), 7, "bodies[0].geometry.length",
+                        "must exceed the distance between start and end (length 5 <= distance 5)"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, kLine, edit(cat, "L", "4")), 7, "bodies[0].geometry.length", "must exceed"));
+  EXPECT_TRUE(
+      failsWith(edit(kBase3d, kLine, edit(cat, "L", "-4")), 7, "bodies[0].geometry.length", "must be positive"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, kLine, edit(cat, "L}", "6, sag_direction: [3, 4, 0]}")), 7,
+                        "bodies[0].geometry.sag_direction", "parallel"));
+  // Without sag_direction the cable hangs along -z (no gravity) or along gravity.
+  const std::string vertical = "{kind: catenary, start: [0, 0, 0], end: [0, 0, 3], length: 4}";
+  EXPECT_TRUE(failsWith(edit(kBase3d, kLine, vertical), 7, "bodies[0].geometry", "parallel"));
+  EXPECT_NO_THROW(parseScene(edit(kBase3d, kLine, edit(cat, "L", "6")) + "  gravity: [0, 0, -9.81]\n", "s.yaml"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, kLine, edit(cat, "L", "6")) + "  gravity: [3, 4, 0]\n", 7, "bodies[0].geometry",
+                        "default sag direction (gravity)"));
+}
+
+TEST(SceneReader, PolylineChecks) {
+  const auto poly = [](const std::string& points) {
+    return edit(kBase3d, kLine, "{kind: polyline, points: " + points + "}");
+  };
+  EXPECT_NO_THROW(parseScene(poly("[[0, 0, 0], [1, 0, 0]]"), "scene.yaml"));
+  EXPECT_TRUE(failsWith(poly("[[0, 0, 0]]"), 7, "bodies[0].geometry.points", "at least 2 points (got 1)"));
+  EXPECT_TRUE(failsWith(poly("[]"), 7, "bodies[0].geometry.points", "at least 2 points (got 0)"));
+  EXPECT_TRUE(
+      failsWith(poly("[[0, 0, 0], [1, 0, 0], [1, 0, 0]]"), 7, "bodies[0].geometry.points[2]", "zero-length segment"));
+  EXPECT_TRUE(failsWith(poly("[[0, 0, 0], [1, 0]]"), 7, "bodies[0].geometry.points[1]", "expected 3 numbers"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, kLine, "{kind: polyline}"), 7, "bodies[0].geometry.points",
+                        "missing required value (give points or file)"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, kLine, "{kind: polyline, points: [[0, 0, 0], [1, 0, 0]], file: a.csv}"), 7,
+                        "bodies[0].geometry.file", "either points or file"));
+}
+
+TEST_F(SceneFiles, PolylineCsvProblemsNameTheFileKeyAndCsvLine) {
+  const std::string scene = edit(kBase3d, kLine, "{kind: polyline, file: route.csv}");
+  const std::string path = write("s.yaml", scene);
+  const std::string csv = (dir_ / "route.csv").string();
+  const auto check = [&](const std::string& word) {
+    const std::string msg = errorOf([&] { readScene(path); });
+    EXPECT_EQ(msg.rfind(path + ":7: bodies[0].geometry.file: ", 0), 0u) << msg;
+    EXPECT_NE(msg.find(word), std::string::npos) << msg << "\n  lacks: " << word;
+  };
+  check("cannot open polyline file '" + csv + "'");  // not written yet
+  write("route.csv", "0,0,0\n1,0,0\n# comment\n1,x,0\n");
+  check("'" + csv + "' line 4: expected comma-separated numbers");
+  write("route.csv", "0,0,0\n1,0\n");
+  check("'" + csv + "' line 2: expected 3 numbers (got 2)");
+  write("route.csv", "0,0,0\n1,0,0\n\n1,0,0\n");
+  check("zero-length segment between lines 2 and 4");
+  write("route.csv", "# nothing but\n0,0,0\n");
+  check("at least 2 points (got 1)");
+}
+
+TEST(SceneReader, UnknownChoicesListTheAllowedValues) {
+  EXPECT_TRUE(failsWith(edit(kBase3d, "analysis: static", "analysis: dynamic"), 1, "analysis",
+                        "unknown analysis 'dynamic'; allowed: static, modes"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "element: AncfCable3d", "element: Beam3d"), 5, "bodies[0].element",
+                        "unknown element type 'Beam3d'; allowed: AncfCable2d, AncfCable3d"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "kind: line", "kind: helix"), 7, "bodies[0].geometry.kind",
+                        "unknown geometry kind 'helix'; allowed: line, arc, polyline, catenary"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "type: clamped", "type: welded"), 10, "supports[0].type",
+                        "unknown support type 'welded'; allowed: clamped, pinned, fixed"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "rho: 7850}\n", "rho: 7850}\n    stress_free: curved\n"), 9,
+                        "bodies[0].stress_free", "unknown stress_free 'curved'; allowed: straight, initial"));
+}
+
+// ------------------------------------------------------------------------------------------------
+// References, dimension and supports
+
+TEST(SceneReader, ReferencesToUnknownBodiesAreRejected) {
+  EXPECT_TRUE(failsWith(edit(kBase3d, "{body: cable, node: 0", "{body: rope, node: 0"), 10, "supports[0].body",
+                        "no body named 'rope'; bodies: cable"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "{body: cable, node: last", "{body: rope, node: last"), 12, "loads.nodal[0].body",
+                        "no body named 'rope'"));
+  EXPECT_TRUE(failsWith(kBase3d + "  distributed: [{body: rope, force_per_length: [0, 0, 1]}]\n", 13,
+                        "loads.distributed[0].body", "no body named 'rope'"));
+  EXPECT_TRUE(failsWith(kBase3d + "junctions:\n  - nodes: [{body: cable, node: 0}, {body: rope, node: 0}]\n", 14,
+                        "junctions[0].nodes[1].body", "no body named 'rope'"));
+}
+
+TEST(SceneReader, NodeIndicesMustExist) {
+  EXPECT_NO_THROW(parseScene(edit(kBase3d, "node: 0", "node: 20"), "scene.yaml"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "node: 0", "node: 21"), 10, "supports[0].node",
+                        "node index out of range: body 'cable' has nodes 0..20 or 'last' (got 21)"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "node: 0", "node: -1"), 10, "supports[0].node", "out of range"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "node: last", "node: first"), 12, "loads.nodal[0].node",
+                        "expected a node index or 'last' (got 'first')"));
+}
+
+TEST(SceneReader, DuplicateBodyNamesAreRejected) {
+  const std::string second =
+      "  - name: cable\n"
+      "    element: AncfCable3d\n"
+      "    elements: 2\n"
+      "    geometry: {kind: line, start: [0, 0, 0], end: [0, 1, 0]}\n"
+      "    section: {E: 1, A: 1, I: 1, rho: 1}\n";
+  EXPECT_TRUE(failsWith(edit(kBase3d, "supports:\n", second + "supports:\n"), 9, "bodies[1].name",
+                        "duplicate body name 'cable' (also bodies[0] on line 4)"));
+}
+
+TEST(SceneReader, JunctionChecks) {
+  EXPECT_TRUE(failsWith(kBase3d + "junctions:\n  - nodes: [{body: cable, node: 0}]\n", 14, "junctions[0].nodes",
+                        "at least 2 nodes (got 1)"));
+  EXPECT_TRUE(failsWith(kBase3d + "junctions:\n  - nodes: [{body: cable, node: last}, {body: cable, node: 20}]\n", 14,
+                        "junctions[0].nodes[1]", "the same node as junctions[0].nodes[0]"));
+  EXPECT_TRUE(failsWith(kBase3d + "junctions:\n  - nodes: [{body: cable, node: 0, slope: 1}, {body: cable, node: 2}]\n",
+                        14, "junctions[0].nodes[0].slope", "unknown key; allowed: body, node"));
+}
+
+TEST(SceneReader, ElementTypeMustMatchTheDimension) {
+  EXPECT_TRUE(failsWith(edit(kBase3d, "element: AncfCable3d", "element: AncfCable2d"), 5, "bodies[0].element",
+                        "AncfCable2d needs dimension: 2 (dimension mismatch: the scene has dimension: 3)"));
+  EXPECT_TRUE(failsWith(edit(kBase2d, "element: AncfCable2d", "element: AncfCable3d"), 5, "bodies[0].element",
+                        "dimension mismatch"));
+}
+
+TEST(SceneReader, InitialStressFreeOnlyIn2d) {
+  EXPECT_NO_THROW(parseScene(edit(kBase2d, "rho: 7850}\n", "rho: 7850}\n    stress_free: initial\n"), "scene.yaml"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "rho: 7850}\n", "rho: 7850}\n    stress_free: initial\n"), 9,
+                        "bodies[0].stress_free", "only allowed when dimension is 2"));
+}
+
+TEST(SceneReader, FixedSupportDofs) {
+  const auto support = [](const std::string& base, const std::string& s) {
+    return edit(base, "{body: cable, node: 0, type: clamped}", "{body: cable, node: 0, " + s + "}");
+  };
+  EXPECT_NO_THROW(parseScene(support(kBase3d, "type: fixed, dofs: [0, 5]"), "scene.yaml"));
+  EXPECT_TRUE(failsWith(support(kBase3d, "type: fixed"), 10, "supports[0].dofs", "missing required value"));
+  EXPECT_TRUE(failsWith(support(kBase3d, "type: fixed, dofs: []"), 10, "supports[0].dofs", "at least one"));
+  EXPECT_TRUE(
+      failsWith(support(kBase3d, "type: fixed, dofs: [1, 6]"), 10, "supports[0].dofs[1]", "must be 0..5 (got 6)"));
+  EXPECT_TRUE(failsWith(support(kBase2d, "type: fixed, dofs: [4]"), 10, "supports[0].dofs[0]", "must be 0..3 (got 4)"));
+  EXPECT_TRUE(failsWith(support(kBase3d, "type: fixed, dofs: [1, 1]"), 10, "supports[0].dofs[1]", "listed twice"));
+  EXPECT_TRUE(
+      failsWith(support(kBase3d, "type: pinned, dofs: [1]"), 10, "supports[0].dofs", "only allowed with type: fixed"));
+}
+
+// ------------------------------------------------------------------------------------------------
+// Documentation
+
+// requirement: every complete example in docs/scene-reference.md (a ```yaml block starting with
+// "# scene:") is a valid scene.
+TEST(SceneReader, DocumentationExamplesParse) {
+  const std::string path = std::string(STRAND_DOCS_DIR) + "/scene-reference.md";
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << path;
+  int examples = 0;
+  std::string line, block;
+  bool inBlock = false;
+  while (std::getline(in, line)) {
+    if (!inBlock && line == "```yaml") {
+      inBlock = true;
+      block.clear();
+    } else if (inBlock && line == "```") {
+      inBlock = false;
+      if (block.rfind("# scene:", 0) != 0) continue;
+      ++examples;
+      EXPECT_NO_THROW(parseScene(block, "docs example")) << block;
+    } else if (inBlock) {
+      block += line + "\n";
+    }
+  }
+  EXPECT_GE(examples, 4);
+}
