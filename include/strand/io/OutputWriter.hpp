@@ -1,0 +1,101 @@
+// Run output: one HDF5 file per run plus XDMF 3 files that ParaView opens.
+//
+// Layout of <path> (all written by rank 0 with the serial HDF5 API; the caller gathers first):
+//   /                          attrs strand_version, scene_file, analysis (strings), dimension (int),
+//                              plus whatever setAttribute() adds
+//   /bodies/<body>             attrs element_type (string), elements, nodes, coords_per_node,
+//                              points_per_body (int)
+//   /bodies/<body>/connectivity   int32 (pointsPerBody-1) x 2: segment k joins centerline points k, k+1
+//   /frames                    attr count (int): frames written so far
+//   /frames/NNNNN              attr time (double): physical time or load factor; NNNNN = 00000, 00001, ...
+//   /frames/NNNNN/<body>/centerline    double pointsPerBody x 3 (2D runs: z = 0)
+//   /frames/NNNNN/<body>/coordinates   double nodes x coordsPerNode
+//   /series/<name>             double, 1-D, chunked, unlimited; one value per writeScalarSeries() call
+//   /modes/frequencies_hz      double, one per mode
+//   /modes/NNNNN/<body>/{centerline,coordinates}   as for frames, one group per mode
+//
+// One 2-D dataset per frame and body, never a hyperslab into a big time dataset: ParaView's Xdmf3
+// readers cannot follow one. <stem>.xmf holds a temporal collection (one spatial collection over the
+// bodies per frame: Polyline topology = the body's connectivity, XYZ geometry = the frame's
+// centerline); <stem>_modes.xmf holds the mode shapes as a collection whose "time" is the mode
+// index. Both reference the .h5 file by basename, so the pair can be moved together.
+//
+// Crash safety: after each frame the HDF5 file is flushed (H5Fflush) and then the .xmf file is
+// rewritten atomically (<stem>.xmf.tmp, then rename()), so a run that is killed or diverges leaves
+// a readable file with every frame up to the last one and an .xmf that never names missing data.
+// Series values are flushed with the next frame (or by close()). While the run holds the file,
+// HDF5 file locking keeps other processes out; a reader that must peek sets
+// HDF5_USE_FILE_LOCKING=FALSE and may catch the file mid-frame. The .xmf is rewritten whole each
+// frame (about 0.6 kB per body and frame): fine for thousands of frames, quadratic beyond.
+//
+// Parallel use: every method is collective over `comm` (all ranks call it); only rank 0 touches
+// files, and its success or failure is broadcast so that all ranks return or throw together. Data
+// arguments are read on rank 0 only. The destructor does no communication: it closes the files on
+// rank 0 if close() was not called and swallows errors.
+//
+// Errors (thrown on all ranks):
+//   strand::InputError        the file cannot be created ("cannot create output file '<path>': ..."),
+//                             or a body / series / attribute name is unusable
+//   std::invalid_argument     data whose sizes do not match the BodyLayout (a caller bug)
+//   std::logic_error          use after close(), writeModes() twice
+//   std::runtime_error        an HDF5 or file-system failure while writing ("cannot write output ...")
+#pragma once
+#include <mpi.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace strand::io {
+
+struct BodyLayout {
+  std::string name;         // group name: non-empty, no '/' or ':', not "." or ".."; unique
+  std::string elementType;  // e.g. "AncfCable3d"
+  int elements = 0;
+  int nodes = 0;
+  int coordsPerNode = 0;
+  int pointsPerBody = 0;  // centerline sample points, >= 2
+};
+
+struct BodyFrame {
+  std::vector<double> centerline;   // pointsPerBody x 3, row-major
+  std::vector<double> coordinates;  // nodes x coordsPerNode, row-major
+};
+
+struct RunInfo {
+  std::string sceneFile, analysis, version;
+  int dimension = 3;
+};
+
+class OutputWriter {
+public:
+  // Creates (truncates) `path` and writes the root attributes, /bodies and an empty <stem>.xmf.
+  OutputWriter(MPI_Comm comm, std::string path, RunInfo info, std::vector<BodyLayout> bodies);
+  ~OutputWriter();
+  OutputWriter(const OutputWriter&) = delete;
+  OutputWriter& operator=(const OutputWriter&) = delete;
+
+  // Writes /frames/NNNNN for the next frame; `frames` has one entry per body, in layout order.
+  void writeFrame(double time, const std::vector<BodyFrame>& frames);
+  // Appends `value` to /series/<name>, creating the dataset on first use.
+  void writeScalarSeries(const std::string& name, double value);
+  // Writes /modes (once per run) and <stem>_modes.xmf; shapes[m] has one entry per body.
+  void writeModes(const std::vector<double>& frequenciesHz,
+                  const std::vector<std::vector<BodyFrame>>& shapes);
+  // Root-group attributes; an existing attribute of the same name is replaced.
+  void setAttribute(const std::string& name, double value);
+  void setAttribute(const std::string& name, const std::string& value);
+  // Flushes and closes the file; later calls to close() do nothing, other methods throw.
+  void close();
+
+  const std::string& path() const;
+  std::string xdmfPath() const;       // <stem>.xmf next to path()
+  std::string modesXdmfPath() const;  // <stem>_modes.xmf next to path()
+  int framesWritten() const;          // same value on all ranks
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace strand::io

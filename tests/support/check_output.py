@@ -1,0 +1,321 @@
+#!/usr/bin/python3
+"""Check a Strand output file (HDF5 + XDMF) and print a one-line JSON summary.
+
+usage: check_output.py FILE.h5 [--pvpython]
+
+Checks the layout written by strand::io::OutputWriter (include/strand/io/OutputWriter.hpp):
+root attributes, /bodies/<body>/connectivity, /frames/NNNNN/<body>/{centerline,coordinates}
+(present for every body, right shapes, finite), /series, /modes, and that every HDF reference in
+<stem>.xmf and <stem>_modes.xmf names an existing dataset of the stated dimensions.
+With --pvpython it also opens the .xmf files with ParaView's Xdmf3 reader when ParaView's Python
+modules (python3-paraview) or a pvpython executable are available, and skips that step otherwise.
+
+Exit status: 0 all checks passed, 1 some check failed, 2 the file cannot be opened.
+Uses the Debian python3-h5py, hence /usr/bin/python3 (not a pyenv python3 without h5py).
+"""
+import importlib.util
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import xml.etree.ElementTree as ET
+
+try:
+    import h5py
+    import numpy as np
+except ImportError as e:  # pragma: no cover
+    print(json.dumps({"ok": False, "errors": ["cannot import h5py/numpy (%s); run with /usr/bin/python3" % e]}))
+    sys.exit(2)
+
+
+def attr(obj, name, errors, where):
+    if name not in obj.attrs:
+        errors.append("%s: missing attribute '%s'" % (where, name))
+        return None
+    v = obj.attrs[name]
+    if isinstance(v, bytes):
+        v = v.decode("utf-8")
+    if isinstance(v, np.generic):
+        v = v.item()
+    return v
+
+
+def check_bodies_group(parent, where, layouts, errors):
+    """parent: a frame or mode group; every body needs finite centerline and coordinates."""
+    for name, lay in layouts.items():
+        for ds, shape in (("centerline", (lay["points"], 3)), ("coordinates", (lay["nodes"], lay["coords_per_node"]))):
+            path = "%s/%s/%s" % (where, name, ds)
+            if name not in parent or ds not in parent[name]:
+                errors.append("%s: missing" % path)
+                continue
+            d = parent[name][ds]
+            if d.shape != shape:
+                errors.append("%s: shape %s, expected %s" % (path, d.shape, shape))
+            if not np.all(np.isfinite(d[()])):
+                errors.append("%s: non-finite values" % path)
+
+
+def check_xdmf(xmf, h5, errors):
+    """Every Format="HDF" DataItem must name a dataset in `h5` with the stated dimensions."""
+    info = {"file": os.path.basename(xmf), "references": 0, "grids": 0}
+    try:
+        root = ET.parse(xmf).getroot()
+    except (ET.ParseError, OSError) as e:
+        errors.append("%s: not valid XML: %s" % (xmf, e))
+        return info
+    if root.tag != "Xdmf" or root.get("Version", "").split(".")[0] != "3":
+        errors.append("%s: not an XDMF 3 file" % xmf)
+    top = root.findall("./Domain/Grid")
+    if len(top) != 1 or top[0].get("CollectionType") != "Temporal":
+        errors.append("%s: expected one temporal collection under Domain" % xmf)
+        return info
+    steps = top[0].findall("./Grid")
+    info["grids"] = len(steps)
+    times = []
+    for g in steps:
+        t = g.find("./Time")
+        if t is None:
+            errors.append("%s: grid '%s' has no Time" % (xmf, g.get("Name")))
+        else:
+            times.append(float(t.get("Value")))
+    if len(set(times)) != len(times):
+        errors.append("%s: repeated Time values (ParaView shows only one of them)" % xmf)
+    h5name = os.path.basename(h5.filename)
+    for item in root.iter("DataItem"):
+        if item.get("Format") != "HDF":
+            continue
+        info["references"] += 1
+        ref = (item.text or "").strip()
+        fname, _, dpath = ref.partition(":")
+        if fname != h5name:
+            errors.append("%s: reference '%s' is not to '%s' (must be relative)" % (xmf, ref, h5name))
+            continue
+        if dpath not in h5 or not isinstance(h5[dpath], h5py.Dataset):
+            errors.append("%s: reference '%s': no such dataset" % (xmf, ref))
+            continue
+        dims = tuple(int(x) for x in item.get("Dimensions", "").split())
+        if dims != h5[dpath].shape:
+            errors.append("%s: reference '%s': Dimensions %s, dataset has %s" % (xmf, ref, dims, h5[dpath].shape))
+    return info
+
+
+PV_SNIPPET = r"""
+import json, sys
+from paraview.simple import Xdmf3ReaderS, UpdatePipeline
+out = {}
+for f in sys.argv[1:]:
+    r = Xdmf3ReaderS(FileName=[f])
+    times = r.TimestepValues
+    times = [] if times is None else (list(times) if hasattr(times, "__len__") else [float(times)])
+    UpdatePipeline(time=times[-1] if times else None, proxy=r)
+    info = r.GetDataInformation()
+    out[f] = {"timesteps": len(times), "last_time": times[-1] if times else None,
+              "points": info.GetNumberOfPoints(), "cells": info.GetNumberOfCells(),
+              "bounds": list(info.GetBounds())}
+print(json.dumps(out))
+"""
+
+
+def check_paraview(xmfs, expected, errors):
+    """Open the .xmf files with ParaView's Xdmf3 reader; 'skipped' when ParaView is absent.
+
+    expected[xmf] = (steps, points, cells, bounds of the last step): what the reader must show."""
+    if not xmfs:
+        return "skipped (no .xmf)"
+    if importlib.util.find_spec("paraview") is not None:  # Debian python3-paraview
+        interpreter = sys.executable
+    else:
+        interpreter = shutil.which("pvpython")
+    if interpreter is None:
+        return "skipped (no paraview)"
+    with tempfile.NamedTemporaryFile("w", suffix=".py", delete=False) as script:
+        script.write(PV_SNIPPET)
+    try:
+        # A separate process: ParaView may abort on a bad file, which must not take this script down.
+        # Absolute paths: the Xdmf3 reader resolves "run.h5" against a bare "run.xmf" wrongly.
+        res = subprocess.run([interpreter, script.name] + [os.path.abspath(x) for x in xmfs], capture_output=True, text=True, timeout=300)
+    except (OSError, subprocess.TimeoutExpired) as e:
+        errors.append("paraview: %s" % e)
+        return "failed"
+    finally:
+        os.unlink(script.name)
+    lines = [l for l in res.stdout.splitlines() if l.startswith("{")]
+    if res.returncode != 0 or not lines:
+        errors.append("paraview: exit %d: %s" % (res.returncode, res.stderr.strip()[-500:]))
+        return "failed"
+    result = json.loads(lines[-1])
+    for xmf in xmfs:
+        r = result.get(os.path.abspath(xmf))
+        if r is None:
+            errors.append("paraview: %s: not read" % xmf)
+            continue
+        steps, points, cells, bounds = expected[xmf]
+        if (r["timesteps"], r["points"], r["cells"]) != (steps, points, cells):
+            errors.append("paraview: %s: %d steps, %d points, %d cells; expected %d, %d, %d" %
+                          (xmf, r["timesteps"], r["points"], r["cells"], steps, points, cells))
+        if bounds is not None and np.all(np.isfinite(bounds)) and not np.allclose(r["bounds"], bounds, rtol=1e-12, atol=1e-12):
+            errors.append("paraview: %s: last step bounds %s, expected %s" % (xmf, r["bounds"], bounds))
+    return result
+
+
+def expected_steps(h5, modes):
+    g = h5.get("modes" if modes else "frames", {})
+    return len([k for k in g.keys() if k != "frequencies_hz"])
+
+
+def last_bounds(h5, modes):
+    """[xmin, xmax, ymin, ymax, zmin, zmax] over all bodies' centerlines of the last frame or mode."""
+    g = h5.get("modes" if modes else "frames")
+    names = sorted(k for k in g.keys() if k != "frequencies_hz") if g is not None else []
+    if not names:
+        return None
+    pts = np.concatenate([b["centerline"][()] for b in g[names[-1]].values()
+                          if isinstance(b, h5py.Group) and "centerline" in b])
+    return [float(v) for pair in zip(pts.min(axis=0), pts.max(axis=0)) for v in pair]
+
+
+def check_file(h5, path, summary, errors):
+    """All checks on the open file; returns (xmf files, what ParaView must show for each)."""
+    for key in ("strand_version", "scene_file", "analysis", "dimension"):
+        summary[key] = attr(h5, key, errors, "/")
+
+    # bodies
+    layouts = {}
+    if "bodies" not in h5 or len(h5["bodies"]) == 0:
+        errors.append("/bodies: missing or empty")
+    else:
+        for name, g in h5["bodies"].items():
+            where = "/bodies/" + name
+            lay = {k: attr(g, k, errors, where) for k in ("element_type", "elements", "nodes", "coords_per_node")}
+            conn = g.get("connectivity")
+            if conn is None or conn.ndim != 2 or conn.shape[1] != 2 or conn.shape[0] < 1:
+                errors.append(where + "/connectivity: missing or not (n, 2)")
+                lay["points"] = None
+            else:
+                n = conn.shape[0]
+                segments = np.stack([np.arange(n), np.arange(1, n + 1)], axis=1)
+                if not np.array_equal(conn[()], segments):
+                    errors.append(where + "/connectivity: not consecutive segments")
+                lay["points"] = n + 1
+            if "points_per_body" in g.attrs and lay["points"] is not None and int(g.attrs["points_per_body"]) != lay["points"]:
+                errors.append(where + ": points_per_body does not match connectivity")
+            layouts[name] = lay
+    summary["bodies"] = {n: {"element_type": l["element_type"], "elements": l["elements"],
+                             "nodes": l["nodes"], "points": l["points"]} for n, l in layouts.items()}
+    valid_layouts = {n: l for n, l in layouts.items()
+                     if None not in (l["points"], l["nodes"], l["coords_per_node"])}
+
+    # frames
+    times = []
+    if "frames" not in h5:
+        errors.append("/frames: missing")
+        names = []
+    else:
+        frames = h5["frames"]
+        names = sorted(k for k in frames.keys())
+        if names != ["%05d" % i for i in range(len(names))]:
+            errors.append("/frames: groups are not 00000..%05d" % (len(names) - 1))
+        count = attr(frames, "count", errors, "/frames")
+        if count is not None and count != len(names):
+            errors.append("/frames: count attribute %s but %d frame groups" % (count, len(names)))
+        for n in names:
+            t = attr(frames[n], "time", errors, "/frames/" + n)
+            if t is not None:
+                if not math.isfinite(t):
+                    errors.append("/frames/%s: time is not finite" % n)
+                times.append(t)
+            check_bodies_group(frames[n], "/frames/" + n, valid_layouts, errors)
+    if not names:
+        errors.append("/frames: no frames")
+    summary["frames"] = len(names)
+    summary["time_range"] = [min(times), max(times)] if times else None
+
+    # series (values may legitimately be inf/nan on a diverged run: only the shape is checked)
+    series = {}
+    for name, d in h5.get("series", {}).items():
+        if not isinstance(d, h5py.Dataset) or d.ndim != 1:
+            errors.append("/series/%s: not a 1-D dataset" % name)
+            continue
+        series[name] = int(d.shape[0])
+    summary["series"] = series
+
+    # modes
+    if "modes" in h5:
+        m = h5["modes"]
+        f = m.get("frequencies_hz")
+        groups = sorted(k for k in m.keys() if k != "frequencies_hz")
+        if f is None:
+            errors.append("/modes/frequencies_hz: missing")
+            summary["modes"] = None
+        else:
+            freqs = f[()]
+            if len(freqs) != len(groups) or groups != ["%05d" % i for i in range(len(groups))]:
+                errors.append("/modes: %d frequencies but mode groups %s" % (len(freqs), groups))
+            if not np.all(np.isfinite(freqs)):
+                errors.append("/modes/frequencies_hz: non-finite values")
+            summary["modes"] = [float(x) for x in freqs]
+        for g in groups:
+            check_bodies_group(m[g], "/modes/" + g, valid_layouts, errors)
+
+    # XDMF next to the file: <stem>.xmf always, <stem>_modes.xmf when there are modes
+    stem = os.path.splitext(path)[0]
+    xmfs = []
+    expected = {}
+    summary["xdmf"] = []
+    n_modes = len(summary["modes"]) if summary.get("modes") else 0
+    for xmf, want, required in ((stem + ".xmf", len(names), True),
+                                (stem + "_modes.xmf", n_modes, "modes" in h5)):
+        if not os.path.exists(xmf):
+            if required:
+                errors.append("%s: missing" % xmf)
+            continue
+        xmfs.append(xmf)
+        info = check_xdmf(xmf, h5, errors)
+        if info["grids"] != want:
+            errors.append("%s: %d grids, expected %d" % (xmf, info["grids"], want))
+        summary["xdmf"].append(info)
+        is_modes = xmf.endswith("_modes.xmf")
+        expected[xmf] = (expected_steps(h5, is_modes), sum(l["points"] for l in valid_layouts.values()),
+                         sum(l["points"] - 1 for l in valid_layouts.values()), last_bounds(h5, is_modes))
+
+    return xmfs, expected
+
+
+def main(argv):
+    args = [a for a in argv[1:] if not a.startswith("--")]
+    flags = {a for a in argv[1:] if a.startswith("--")}
+    if len(args) != 1 or flags - {"--pvpython"}:
+        print(__doc__.strip().splitlines()[2], file=sys.stderr)
+        return 2
+    path = args[0]
+    errors = []
+    summary = {"file": path}
+    try:
+        h5 = h5py.File(path, "r")
+    except OSError as e:
+        summary.update(ok=False, errors=["cannot open: %s" % e])
+        print(json.dumps(summary))
+        return 2
+
+    xmfs, expected = [], {}
+    with h5:
+        try:
+            xmfs, expected = check_file(h5, path, summary, errors)
+        except Exception as e:  # e.g. a file still being written by a run (HDF5_USE_FILE_LOCKING=FALSE)
+            errors.append("cannot read: %s: %s" % (type(e).__name__, e))
+            xmfs = []
+
+    if "--pvpython" in flags:
+        summary["paraview"] = check_paraview(xmfs, expected, errors)
+
+    summary["ok"] = not errors
+    summary["errors"] = errors
+    print(json.dumps(summary))
+    return 0 if not errors else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,0 +1,430 @@
+// requirement: the output writer produces the HDF5 layout of include/strand/io/OutputWriter.hpp
+// (root attributes, /bodies, one dataset per frame and body, /series, /modes), an XDMF 3 file that
+// references those datasets by the .h5 basename, a file that is readable with every frame up to the
+// last one while the run is still going (flush + atomic .xmf rewrite per frame), and InputError on
+// all ranks when the file cannot be created. Files are checked by reopening them with the HDF5 C API.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <petscsys.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "strand/core/Error.hpp"
+#include "strand/io/OutputWriter.hpp"
+
+using namespace strand::io;
+namespace fs = std::filesystem;
+
+namespace {
+
+int rankOf(MPI_Comm comm) {
+  int r = 0;
+  MPI_Comm_rank(comm, &r);
+  return r;
+}
+
+// A fresh directory, the same path on every rank (created by rank 0).
+std::string freshDir(const std::string& tag) {
+  std::string dir;
+  if (rankOf(PETSC_COMM_WORLD) == 0) {
+    dir = (fs::temp_directory_path() / ("strand_output_" + tag + "_" + std::to_string(getpid()))).string();
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  int n = static_cast<int>(dir.size());
+  MPI_Bcast(&n, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  dir.resize(n);
+  MPI_Bcast(dir.data(), n, MPI_CHAR, 0, PETSC_COMM_WORLD);
+  return dir;
+}
+
+std::vector<BodyLayout> twoBodies() {
+  return {{"main", "AncfCable3d", 2, 3, 6, 5}, {"stay", "AncfCable2d", 1, 2, 4, 3}};
+}
+
+RunInfo runInfo() { return {"scenes/test.yaml", "static", "0.1.0-test", 3}; }
+
+// Distinct, recognisable values: frame f, body b, entry i.
+double value(int f, int b, int i, int which) { return 1000.0 * f + 100.0 * b + i + 0.25 * which; }
+
+std::vector<BodyFrame> makeFrames(const std::vector<BodyLayout>& bodies, int f) {
+  std::vector<BodyFrame> out;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    BodyFrame bf;
+    for (int i = 0; i < bodies[b].pointsPerBody * 3; ++i) bf.centerline.push_back(value(f, b, i, 0));
+    for (int i = 0; i < bodies[b].nodes * bodies[b].coordsPerNode; ++i)
+      bf.coordinates.push_back(value(f, b, i, 1));
+    out.push_back(std::move(bf));
+  }
+  return out;
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+int countOf(const std::string& text, const std::string& needle) {
+  int n = 0;
+  for (auto pos = text.find(needle); pos != std::string::npos; pos = text.find(needle, pos + 1)) ++n;
+  return n;
+}
+
+// Tags balance, every tag closes: enough to catch broken XML generation.
+bool tagsBalanced(const std::string& xml) {
+  std::vector<std::string> stack;
+  std::size_t pos = 0;
+  while ((pos = xml.find('<', pos)) != std::string::npos) {
+    const std::size_t end = xml.find('>', pos);
+    if (end == std::string::npos) return false;
+    std::string tag = xml.substr(pos + 1, end - pos - 1);
+    pos = end + 1;
+    if (tag.empty()) return false;
+    if (tag[0] == '?' || tag[0] == '!') continue;
+    const bool closing = tag[0] == '/';
+    const bool selfClosing = tag.back() == '/';
+    std::string name = tag.substr(closing ? 1 : 0);
+    name = name.substr(0, name.find_first_of(" \t\n/"));
+    if (closing) {
+      if (stack.empty() || stack.back() != name) return false;
+      stack.pop_back();
+    } else if (!selfClosing) {
+      stack.push_back(name);
+    }
+  }
+  return stack.empty();
+}
+
+// --- small HDF5 readers (rank 0) ---
+
+std::vector<hsize_t> dimsOf(hid_t file, const std::string& path) {
+  hid_t d = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  EXPECT_GE(d, 0) << path;
+  if (d < 0) return {};
+  hid_t s = H5Dget_space(d);
+  std::vector<hsize_t> dims(H5Sget_simple_extent_ndims(s));
+  H5Sget_simple_extent_dims(s, dims.data(), nullptr);
+  H5Sclose(s);
+  H5Dclose(d);
+  return dims;
+}
+
+std::vector<double> readDoubles(hid_t file, const std::string& path) {
+  std::vector<double> out;
+  hid_t d = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  EXPECT_GE(d, 0) << path;
+  if (d < 0) return out;
+  hid_t s = H5Dget_space(d);
+  out.resize(H5Sget_simple_extent_npoints(s));
+  H5Sclose(s);
+  EXPECT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), 0) << path;
+  H5Dclose(d);
+  return out;
+}
+
+std::vector<int> readInts(hid_t file, const std::string& path) {
+  std::vector<int> out;
+  hid_t d = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  EXPECT_GE(d, 0) << path;
+  if (d < 0) return out;
+  hid_t s = H5Dget_space(d);
+  out.resize(H5Sget_simple_extent_npoints(s));
+  H5Sclose(s);
+  EXPECT_GE(H5Dread(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), 0) << path;
+  H5Dclose(d);
+  return out;
+}
+
+template <class T>
+T readAttr(hid_t file, const std::string& object, const std::string& name, hid_t memType) {
+  T v{};
+  hid_t a = H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  EXPECT_GE(a, 0) << object << " @" << name;
+  if (a < 0) return v;
+  EXPECT_GE(H5Aread(a, memType, &v), 0);
+  H5Aclose(a);
+  return v;
+}
+
+double attrDouble(hid_t f, const std::string& o, const std::string& n) {
+  return readAttr<double>(f, o, n, H5T_NATIVE_DOUBLE);
+}
+int attrInt(hid_t f, const std::string& o, const std::string& n) {
+  return readAttr<int>(f, o, n, H5T_NATIVE_INT);
+}
+std::string attrString(hid_t f, const std::string& o, const std::string& n) {
+  hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  char* raw = readAttr<char*>(f, o, n, type);
+  H5Tclose(type);
+  std::string s = raw ? raw : "<null>";
+  if (raw) H5free_memory(raw);
+  return s;
+}
+
+bool exists(hid_t file, const std::string& path) { return H5Lexists(file, path.c_str(), H5P_DEFAULT) > 0; }
+
+void expectFrame(hid_t file, const std::vector<BodyLayout>& bodies, int f, double time) {
+  char name[16];
+  std::snprintf(name, sizeof name, "%05d", f);
+  const std::string g = std::string("/frames/") + name;
+  EXPECT_DOUBLE_EQ(attrDouble(file, g, "time"), time);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const BodyLayout& L = bodies[b];
+    const std::string c = g + "/" + L.name + "/centerline", q = g + "/" + L.name + "/coordinates";
+    EXPECT_EQ(dimsOf(file, c), (std::vector<hsize_t>{hsize_t(L.pointsPerBody), 3}));
+    EXPECT_EQ(dimsOf(file, q), (std::vector<hsize_t>{hsize_t(L.nodes), hsize_t(L.coordsPerNode)}));
+    std::vector<double> cv = readDoubles(file, c), qv = readDoubles(file, q);
+    for (std::size_t i = 0; i < cv.size(); ++i) EXPECT_EQ(cv[i], value(f, b, i, 0)) << c << "[" << i << "]";
+    for (std::size_t i = 0; i < qv.size(); ++i) EXPECT_EQ(qv[i], value(f, b, i, 1)) << q << "[" << i << "]";
+  }
+}
+
+}  // namespace
+
+TEST(OutputWriter, WritesFramesSeriesModesAndXdmf) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("full");
+  const std::string path = dir + "/run.h5";
+  const auto bodies = twoBodies();
+  const double times[3] = {0.0, 0.5, 1.0};
+  {
+    OutputWriter w(comm, path, runInfo(), bodies);
+    EXPECT_EQ(w.path(), path);
+    EXPECT_EQ(w.xdmfPath(), dir + "/run.xmf");
+    EXPECT_EQ(w.modesXdmfPath(), dir + "/run_modes.xmf");
+    for (int f = 0; f < 3; ++f) {
+      w.writeFrame(times[f], makeFrames(bodies, f));
+      w.writeScalarSeries("load_factor", times[f]);
+      w.writeScalarSeries("newton_iterations", 3.0 + f);
+    }
+    for (int k = 0; k < 700; ++k) w.writeScalarSeries("residual_norm", 1.0 / (k + 1));  // > one chunk
+    EXPECT_EQ(w.framesWritten(), 3);
+    w.writeModes({1.5, 4.25}, {makeFrames(bodies, 10), makeFrames(bodies, 11)});
+    w.setAttribute("converged", "no");
+    w.setAttribute("converged", "yes");  // replaces
+    w.setAttribute("wall_time_s", 12.5);
+    w.close();
+    w.close();  // idempotent
+  }
+  if (rankOf(comm) != 0) return;
+
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  EXPECT_EQ(attrString(file, "/", "strand_version"), "0.1.0-test");
+  EXPECT_EQ(attrString(file, "/", "scene_file"), "scenes/test.yaml");
+  EXPECT_EQ(attrString(file, "/", "analysis"), "static");
+  EXPECT_EQ(attrInt(file, "/", "dimension"), 3);
+  EXPECT_EQ(attrString(file, "/", "converged"), "yes");
+  EXPECT_EQ(attrDouble(file, "/", "wall_time_s"), 12.5);
+
+  // bodies
+  EXPECT_EQ(attrString(file, "/bodies/main", "element_type"), "AncfCable3d");
+  EXPECT_EQ(attrInt(file, "/bodies/main", "elements"), 2);
+  EXPECT_EQ(attrInt(file, "/bodies/main", "nodes"), 3);
+  EXPECT_EQ(attrInt(file, "/bodies/main", "coords_per_node"), 6);
+  EXPECT_EQ(attrString(file, "/bodies/stay", "element_type"), "AncfCable2d");
+  EXPECT_EQ(attrInt(file, "/bodies/stay", "coords_per_node"), 4);
+  EXPECT_EQ(dimsOf(file, "/bodies/main/connectivity"), (std::vector<hsize_t>{4, 2}));
+  EXPECT_EQ(readInts(file, "/bodies/main/connectivity"), (std::vector<int>{0, 1, 1, 2, 2, 3, 3, 4}));
+  EXPECT_EQ(readInts(file, "/bodies/stay/connectivity"), (std::vector<int>{0, 1, 1, 2}));
+
+  // frames
+  EXPECT_EQ(attrInt(file, "/frames", "count"), 3);
+  for (int f = 0; f < 3; ++f) expectFrame(file, bodies, f, times[f]);
+  EXPECT_FALSE(exists(file, "/frames/00003"));
+
+  // series: 1-D, chunked, unlimited
+  EXPECT_EQ(readDoubles(file, "/series/load_factor"), (std::vector<double>{0.0, 0.5, 1.0}));
+  EXPECT_EQ(readDoubles(file, "/series/newton_iterations"), (std::vector<double>{3, 4, 5}));
+  const std::vector<double> res = readDoubles(file, "/series/residual_norm");
+  ASSERT_EQ(res.size(), 700u);
+  EXPECT_EQ(res[0], 1.0);
+  EXPECT_EQ(res[699], 1.0 / 700);
+  {
+    hid_t d = H5Dopen2(file, "/series/residual_norm", H5P_DEFAULT);
+    hid_t s = H5Dget_space(d);
+    hsize_t dims[1], maxDims[1];
+    EXPECT_EQ(H5Sget_simple_extent_ndims(s), 1);
+    H5Sget_simple_extent_dims(s, dims, maxDims);
+    EXPECT_EQ(maxDims[0], H5S_UNLIMITED);
+    hid_t p = H5Dget_create_plist(d);
+    EXPECT_EQ(H5Pget_layout(p), H5D_CHUNKED);
+    H5Pclose(p);
+    H5Sclose(s);
+    H5Dclose(d);
+  }
+
+  // modes
+  EXPECT_EQ(readDoubles(file, "/modes/frequencies_hz"), (std::vector<double>{1.5, 4.25}));
+  EXPECT_EQ(readDoubles(file, "/modes/00001/stay/centerline"),
+            makeFrames(bodies, 11)[1].centerline);
+  EXPECT_EQ(readDoubles(file, "/modes/00000/main/coordinates"), makeFrames(bodies, 10)[0].coordinates);
+  EXPECT_EQ(attrDouble(file, "/modes/00001", "frequency_hz"), 4.25);
+  EXPECT_GE(H5Fclose(file), 0);
+
+  // XDMF: temporal collection of spatial collections, relative references, well formed
+  const std::string xmf = readText(dir + "/run.xmf");
+  EXPECT_TRUE(tagsBalanced(xmf));
+  EXPECT_NE(xmf.find("Version=\"3.0\""), std::string::npos);
+  EXPECT_NE(xmf.find("CollectionType=\"Temporal\""), std::string::npos);
+  EXPECT_EQ(countOf(xmf, "CollectionType=\"Spatial\""), 3);
+  EXPECT_EQ(countOf(xmf, "<Time Value="), 3);
+  EXPECT_NE(xmf.find("<Time Value=\"0.5\"/>"), std::string::npos);
+  EXPECT_EQ(countOf(xmf, "TopologyType=\"Polyline\" NodesPerElement=\"2\""), 6);
+  EXPECT_EQ(countOf(xmf, "GeometryType=\"XYZ\""), 6);
+  EXPECT_NE(xmf.find(">run.h5:/bodies/main/connectivity<"), std::string::npos);
+  EXPECT_NE(xmf.find(">run.h5:/frames/00002/main/centerline<"), std::string::npos);
+  EXPECT_NE(xmf.find(">run.h5:/frames/00000/stay/centerline<"), std::string::npos);
+  EXPECT_NE(xmf.find("Dimensions=\"5 3\""), std::string::npos);
+  EXPECT_NE(xmf.find("Dimensions=\"4 2\""), std::string::npos);
+  EXPECT_EQ(xmf.find(dir), std::string::npos) << "references must be relative";
+  EXPECT_FALSE(fs::exists(dir + "/run.xmf.tmp"));
+
+  const std::string modes = readText(dir + "/run_modes.xmf");
+  EXPECT_TRUE(tagsBalanced(modes));
+  EXPECT_EQ(countOf(modes, "CollectionType=\"Spatial\""), 2);
+  EXPECT_NE(modes.find(">run.h5:/modes/00001/stay/centerline<"), std::string::npos);
+  EXPECT_NE(modes.find("Value=\"4.25\""), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// A run killed after frame 1 leaves a consistent pair: snapshot the files while the writer is open
+// (what is on disk at that instant is what a SIGKILL would leave) and read the snapshot.
+TEST(OutputWriter, FileIsReadableAfterEachFrame) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("crash");
+  const std::string path = dir + "/live.h5";
+  const auto bodies = twoBodies();
+  OutputWriter w(comm, path, runInfo(), bodies);
+  if (rankOf(comm) == 0) {
+    const std::string empty = readText(dir + "/live.xmf");
+    EXPECT_TRUE(tagsBalanced(empty));
+    EXPECT_EQ(countOf(empty, "<Grid "), 1);  // the (empty) temporal collection
+  }
+  w.writeFrame(0.1, makeFrames(bodies, 0));
+  w.writeScalarSeries("residual_norm", 1e-3);
+  w.writeFrame(0.2, makeFrames(bodies, 1));
+  if (rankOf(comm) == 0) {
+    fs::copy_file(path, dir + "/snapshot.h5");
+    const std::string xmf = readText(dir + "/live.xmf");
+    EXPECT_TRUE(tagsBalanced(xmf));
+    EXPECT_EQ(countOf(xmf, "CollectionType=\"Spatial\""), 2);
+    EXPECT_NE(xmf.find("live.h5:/frames/00001/stay/centerline"), std::string::npos);
+    EXPECT_FALSE(fs::exists(dir + "/live.xmf.tmp"));
+
+    hid_t file = H5Fopen((dir + "/snapshot.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(attrInt(file, "/frames", "count"), 2);
+    expectFrame(file, bodies, 0, 0.1);
+    expectFrame(file, bodies, 1, 0.2);
+    EXPECT_EQ(readDoubles(file, "/series/residual_norm"), (std::vector<double>{1e-3}));
+    H5Fclose(file);
+  }
+  w.close();
+  if (rankOf(comm) == 0) fs::remove_all(dir);
+}
+
+TEST(OutputWriter, MissingDirectoryThrowsInputErrorOnAllRanks) {
+  const std::string path = "/nonexistent_strand_dir/sub/run.h5";
+  try {
+    OutputWriter w(PETSC_COMM_WORLD, path, runInfo(), twoBodies());
+    FAIL() << "no exception";
+  } catch (const strand::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("cannot create output file '" + path + "'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("No such file or directory"), std::string::npos) << msg;
+  }
+}
+
+TEST(OutputWriter, RejectsBadNamesAndSizes) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("bad");
+  auto bodies = twoBodies();
+  bodies[1].name = "a/b";
+  EXPECT_THROW(OutputWriter(comm, dir + "/a.h5", runInfo(), bodies), strand::InputError);
+  bodies[1].name = "main";
+  EXPECT_THROW(OutputWriter(comm, dir + "/b.h5", runInfo(), bodies), strand::InputError);
+
+  bodies = twoBodies();
+  OutputWriter w(comm, dir + "/c.h5", runInfo(), bodies);
+  auto frames = makeFrames(bodies, 0);
+  frames[1].coordinates.pop_back();
+  EXPECT_THROW(w.writeFrame(0.0, frames), std::invalid_argument);
+  EXPECT_THROW(w.writeFrame(0.0, {}), std::invalid_argument);
+  EXPECT_EQ(w.framesWritten(), 0);
+  w.writeFrame(0.0, makeFrames(bodies, 0));  // still usable, and this is frame 00000
+  EXPECT_EQ(w.framesWritten(), 1);
+  EXPECT_THROW(w.writeScalarSeries("a:b", 1.0), strand::InputError);
+  EXPECT_THROW(w.writeModes({1.0}, {}), std::invalid_argument);
+  w.close();
+  EXPECT_THROW(w.writeFrame(1.0, makeFrames(bodies, 1)), std::logic_error);
+  EXPECT_THROW(w.setAttribute("x", 1.0), std::logic_error);
+  if (rankOf(comm) == 0) {
+    hid_t file = H5Fopen((dir + "/c.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(attrInt(file, "/frames", "count"), 1);
+    expectFrame(file, bodies, 0, 0.0);
+    H5Fclose(file);
+    fs::remove_all(dir);
+  }
+}
+
+// A write failure (here: the .xmf cannot be rewritten) throws std::runtime_error on all ranks and
+// rolls the frame back, so the file and the .xmf stay consistent and the next frame takes its index.
+TEST(OutputWriter, WriteFailureRollsBackTheFrame) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("fail");
+  const auto bodies = twoBodies();
+  OutputWriter w(comm, dir + "/e.h5", runInfo(), bodies);
+  if (rankOf(comm) == 0) fs::create_directory(dir + "/e.xmf.tmp");  // blocks the atomic rewrite
+  try {
+    w.writeFrame(1.0, makeFrames(bodies, 5));
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write output file '" + dir + "/e.h5'"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(w.framesWritten(), 0);
+  if (rankOf(comm) == 0) fs::remove(dir + "/e.xmf.tmp");
+  w.writeFrame(2.0, makeFrames(bodies, 0));
+  w.close();
+  if (rankOf(comm) == 0) {
+    hid_t file = H5Fopen((dir + "/e.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(attrInt(file, "/frames", "count"), 1);
+    expectFrame(file, bodies, 0, 2.0);
+    EXPECT_FALSE(exists(file, "/frames/00001"));
+    H5Fclose(file);
+    EXPECT_EQ(countOf(readText(dir + "/e.xmf"), "CollectionType=\"Spatial\""), 1);
+    fs::remove_all(dir);
+  }
+}
+
+// The destructor closes a writer that was never closed (e.g. unwinding after a SolveError).
+TEST(OutputWriter, DestructorCloses) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("dtor");
+  const auto bodies = twoBodies();
+  {
+    OutputWriter w(comm, dir + "/d.h5", runInfo(), bodies);
+    w.writeFrame(2.0, makeFrames(bodies, 0));
+    w.writeScalarSeries("load_factor", 2.0);
+  }
+  if (rankOf(comm) == 0) {
+    hid_t file = H5Fopen((dir + "/d.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    expectFrame(file, bodies, 0, 2.0);
+    EXPECT_EQ(readDoubles(file, "/series/load_factor"), (std::vector<double>{2.0}));
+    H5Fclose(file);
+    fs::remove_all(dir);
+  }
+}
