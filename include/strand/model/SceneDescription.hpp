@@ -1,0 +1,132 @@
+// A validated scene: what the YAML file says, in SI units, before any DOF exists.
+//
+// io/SceneReader fills it and checks every value it can check alone (types, ranges, required keys,
+// names that must exist); model/Model builds bodies, nodes and DOFs from it. Each item keeps the
+// place it came from (file:line) so that errors found later still point into the scene file.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+namespace strand::model {
+
+using Vec3 = std::array<double, 3>;
+
+// Where something came from in the scene file, for error messages: "scene.yaml:12: bodies[0].geometry".
+struct SourceMark {
+  std::string file;
+  int line = 0;        // 1-based; 0 when unknown
+  std::string key;     // dotted path, e.g. "bodies[0].section.E"
+  std::string where() const { return file + ":" + std::to_string(line) + ": " + key; }
+};
+
+enum class Analysis { Static, Modes };
+enum class ElementType { AncfCable2d, AncfCable3d };
+enum class GeometryKind { Line, Arc, Polyline, Catenary };
+
+struct GeometryDesc {
+  GeometryKind kind = GeometryKind::Line;
+  SourceMark mark;
+  // line, catenary: end points; catenary: total cable length (> span), hanging along `sag_direction`
+  Vec3 start{}, end{};
+  double length = 0.0;
+  Vec3 sagDirection{0.0, 0.0, 0.0};  // zero: use the gravity direction, else -y (2D) / -z (3D)
+  // arc: center, radius, angles in radians, in the plane normal to `normal` (3D; 2D uses the xy plane)
+  Vec3 center{};
+  double radius = 0.0, startAngle = 0.0, endAngle = 0.0;
+  Vec3 normal{0.0, 0.0, 1.0};
+  // polyline: corner points (from `points`, or from a CSV `file` of x,y[,z] rows)
+  std::vector<Vec3> points;
+};
+
+struct PointMassDesc {
+  double at = 0.0;    // arc length from the body's first node [m]
+  double mass = 0.0;  // [kg]
+  SourceMark mark;
+};
+
+struct BodyDesc {
+  std::string name;
+  ElementType type = ElementType::AncfCable3d;
+  int elements = 0;
+  GeometryDesc geometry;
+  // section and material (SI)
+  double E = 0.0, A = 0.0, I = 0.0, rho = 0.0;
+  double dampAxial = 0.0, dampBending = 0.0;  // Kelvin-Voigt coefficients [s]
+  bool stressFreeInitial = false;             // true: the initial shape is stress free (2D only)
+  std::vector<PointMassDesc> pointMasses;
+  SourceMark mark;
+};
+
+// A node of a body: index 0..elements, or -1 for the last node.
+struct NodeRef {
+  std::string body;
+  long node = 0;
+  SourceMark mark;
+};
+
+enum class SupportType { Clamped, Pinned, Fixed };
+struct SupportDesc {
+  NodeRef at;
+  SupportType type = SupportType::Clamped;
+  std::vector<int> dofs;  // Fixed: node coordinate indices 0 .. 2*dim-1 (position first, then slope)
+  SourceMark mark;
+};
+
+// Bodies whose listed nodes share one position (their slopes stay independent): cable networks.
+struct JunctionDesc {
+  std::vector<NodeRef> nodes;
+  SourceMark mark;
+};
+
+struct NodalLoadDesc {
+  NodeRef at;
+  Vec3 force{}, moment{};  // 2D uses x, y of force and z of moment
+  SourceMark mark;
+};
+
+struct DistributedLoadDesc {
+  std::string body;
+  Vec3 forcePerLength{};  // [N/m], constant along the body
+  SourceMark mark;
+};
+
+struct LoadsDesc {
+  Vec3 gravity{};  // [m/s^2]; zero by default
+  std::vector<NodalLoadDesc> nodal;
+  std::vector<DistributedLoadDesc> distributed;
+};
+
+struct StaticDesc {
+  int loadSteps = 1;  // equal load increments for large deflection
+};
+
+struct ModesDesc {
+  int count = 6;  // number of eigenpairs
+};
+
+struct DiscretizationDesc {
+  bool slopeScaling = true;  // slope coordinates times the mean element length (docs/validation.md)
+  int gaussPoints = 5;       // elastic forces; mass uses 4 points (exact)
+};
+
+struct OutputDesc {
+  std::string file;          // empty: <scene stem>.h5 in the working directory
+  int samplesPerElement = 4; // centerline points per element in the output
+};
+
+struct SceneDescription {
+  std::string file;  // path of the scene file
+  Analysis analysis = Analysis::Static;
+  int dimension = 3;
+  std::vector<BodyDesc> bodies;
+  std::vector<SupportDesc> supports;
+  std::vector<JunctionDesc> junctions;
+  LoadsDesc loads;
+  StaticDesc statics;
+  ModesDesc modes;
+  DiscretizationDesc discretization;
+  OutputDesc output;
+};
+
+}  // namespace strand::model
