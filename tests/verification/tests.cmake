@@ -1,1 +1,1 @@
-# verification tests
+strand_test(NAME verify_cantilever_statics SOURCES verification/test_cantilever_statics.cpp LABELS verification)

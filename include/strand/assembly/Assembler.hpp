@@ -1,0 +1,57 @@
+// The only place where elements meet PETSc (design section 1).
+//
+// Gathers element coordinates from a ghosted Vec, calls the pure kernels, and scatters residuals
+// and tangents into Vec/Mat. Convention (docs/architecture.md): everything on the left-hand side,
+//   R(q) = f_int(q, v) - lambda f_ext(q)   (statics: lambda is the load factor),
+// rows of supported DOFs are replaced by q_i - q0_i with unit diagonal.
+#pragma once
+#include <petscmat.h>
+
+#include <memory>
+#include <vector>
+
+#include "strand/model/DofMap.hpp"
+#include "strand/model/Model.hpp"
+
+namespace strand::assembly {
+
+class Assembler {
+public:
+  Assembler(const model::Model& model, const model::DofMap& dofs);
+  ~Assembler();
+  Assembler(const Assembler&) = delete;
+  Assembler& operator=(const Assembler&) = delete;
+
+  const model::Model& model() const { return _model; }
+  const model::DofMap& dofs() const { return _dofs; }
+
+  // Initial coordinates of the model in the parallel numbering.
+  PetscErrorCode initialState(Vec X) const;
+  // Static residual R(X) = f_int(X) - loadFactor f_ext(X); supported rows X - X0.
+  PetscErrorCode staticResidual(Vec X, PetscReal loadFactor, Vec R);
+  // Its Jacobian dR/dX (unit rows and columns at supports).
+  PetscErrorCode staticJacobian(Vec X, PetscReal loadFactor, Mat J);
+  // Consistent mass matrix with point masses; supported rows and columns are zero.
+  PetscErrorCode massMatrix(Mat M);
+  // Strain energy (all ranks get the sum).
+  PetscErrorCode strainEnergy(Vec X, PetscReal* U);
+  // Index set of the free (unsupported) DOFs owned by this rank, global numbering.
+  PetscErrorCode freeDofs(IS* is) const;
+  // Scatter a global Vec to a full-length array in model numbering on rank 0 (empty elsewhere).
+  PetscErrorCode gatherToRoot(Vec X, std::vector<double>& modelOrdered);
+
+  struct Impl;  // dimension-specific kernels (Assembler.cpp)
+
+private:
+  const model::Model& _model;
+  const model::DofMap& _dofs;
+  std::unique_ptr<Impl> _impl;
+  Vec _xWork = nullptr, _rWork = nullptr;  // ghosted work vectors
+  std::vector<char> _fixedLocal;           // per DOF of the ghosted local form
+  std::vector<double> _q0Local;            // initial coordinates, ghosted local form
+  std::vector<double> _nodalForceOwned;    // constant nodal forces on owned DOFs
+  VecScatter _toRoot = nullptr;
+  Vec _rootVec = nullptr;
+};
+
+}  // namespace strand::assembly

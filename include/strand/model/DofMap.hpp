@@ -1,0 +1,49 @@
+// Parallel layout of the DOF blocks (design section 5).
+//
+// Rank 0 partitions the block graph with METIS_PartGraphKway and broadcasts the parts; every rank
+// renumbers the blocks so that each owns a contiguous range, takes the elements whose first block it
+// owns, and computes the exact block preallocation of its rows. All blocks have `dim` coordinates.
+#pragma once
+#include <petscmat.h>
+
+#include <vector>
+
+#include "strand/model/Model.hpp"
+
+namespace strand::model {
+
+class DofMap {
+public:
+  DofMap(MPI_Comm comm, const Model& model);
+
+  MPI_Comm comm() const { return _comm; }
+  PetscInt blockSize() const { return _bs; }
+  PetscInt globalBlocks() const { return _nGlobal; }
+  PetscInt ownedBegin() const { return _begin; }  // first owned block, global numbering
+  PetscInt ownedEnd() const { return _end; }
+  PetscInt ownedBlocks() const { return _end - _begin; }
+  // model block -> global block (replicated on every rank)
+  const std::vector<PetscInt>& globalBlock() const { return _global; }
+  // elements (indices into Model::elements()) assembled by this rank
+  const std::vector<int>& localElements() const { return _localElements; }
+  // per local element: 4 ghosted-local block indices and 4 global block indices
+  const std::vector<PetscInt>& elementLocalBlocks() const { return _elLocal; }
+  const std::vector<PetscInt>& elementGlobalBlocks() const { return _elGlobal; }
+  // ghosted-local index of a global block, or -1 when this rank neither owns nor ghosts it
+  PetscInt localBlock(PetscInt globalBlock) const;
+
+  // Ghosted block vector with this layout.
+  PetscErrorCode createVector(Vec* v) const;
+  // Matrix with exact preallocation and MAT_NEW_NONZERO_ALLOCATION_ERR; of type defaultType unless
+  // -<prefix>mat_type says otherwise. BAIJ (block = one node vector) is the memory-lean default.
+  PetscErrorCode createMatrix(Mat* A, const char* prefix, MatType defaultType = MATBAIJ) const;
+
+private:
+  MPI_Comm _comm;
+  PetscInt _bs = 0, _nGlobal = 0, _begin = 0, _end = 0;
+  std::vector<PetscInt> _global, _ghosts, _elLocal, _elGlobal;
+  std::vector<int> _localElements;
+  std::vector<PetscInt> _dnnz, _onnz;  // block preallocation of owned block rows
+};
+
+}  // namespace strand::model

@@ -1,0 +1,70 @@
+// The discrete model built from a scene: bodies, DOF blocks, supports and loads. No PETSc here.
+//
+// Every unknown belongs to a block of `dim` coordinates: a cable node owns a position block and a
+// slope block; a junction makes several bodies' nodes share one position block. Blocks are numbered
+// here in scene order ("model numbering"); DofMap renumbers them for the parallel layout.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "strand/elements/CableSection.hpp"
+#include "strand/model/SceneDescription.hpp"
+
+namespace strand::model {
+
+struct PointMass {
+  int element;  // element index within the body
+  double eta;   // local coordinate in [0, 1]
+  double mass;  // [kg]
+};
+
+struct Body {
+  std::string name;
+  int elements = 0;
+  double length = 0.0, elementLength = 0.0;
+  elements::CableSection section;
+  std::vector<int> posBlock, slopeBlock;  // per node, model numbering
+  std::vector<double> slopeScale;         // per node: slope coordinates are sigma * dr/dx
+  std::vector<double> eps0, kappa0;       // per element x Gauss point (empty: straight, stress free)
+  std::vector<PointMass> pointMasses;
+  Vec3 loadPerLength{};                   // gravity rho A g plus distributed loads [N/m]
+};
+
+// One element of the global element list: its body and its four blocks [r1, r1', r2, r2'].
+struct ElementRef {
+  int body;
+  int index;
+  std::array<int, 4> blocks;
+};
+
+struct NodalMomentLoad {
+  int slopeBlock;
+  Vec3 moment;
+};
+
+class Model {
+public:
+  explicit Model(const SceneDescription& scene);
+
+  int dim() const { return _dim; }
+  int numBlocks() const { return _numBlocks; }
+  int numDofs() const { return _numBlocks * _dim; }
+  int gaussPoints() const { return _gaussPoints; }
+  const std::vector<Body>& bodies() const { return _bodies; }
+  const std::vector<ElementRef>& elements() const { return _elements; }
+  const std::vector<double>& initialCoordinates() const { return _q0; }  // model numbering
+  const std::vector<char>& fixedDofs() const { return _fixed; }          // 1 where a support holds the DOF
+  const std::vector<double>& nodalForces() const { return _nodalForce; } // constant nodal forces per DOF
+  const std::vector<NodalMomentLoad>& nodalMoments() const { return _moments; }
+
+private:
+  int _dim = 3, _numBlocks = 0, _gaussPoints = 5;
+  std::vector<Body> _bodies;
+  std::vector<ElementRef> _elements;
+  std::vector<double> _q0, _nodalForce;
+  std::vector<char> _fixed;
+  std::vector<NodalMomentLoad> _moments;
+};
+
+}  // namespace strand::model

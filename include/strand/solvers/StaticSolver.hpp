@@ -1,0 +1,56 @@
+// Large-deflection statics: SNES Newton with load stepping (options prefix "static_").
+//
+// The load factor goes from 0 to 1 in `loadSteps` equal increments; a step whose Newton solve
+// fails is retried with half the increment, up to `maxCutbacks` times, before the solve stops with
+// a SolveError that names the step, the load factor and what to try.
+#pragma once
+#include <petscsnes.h>
+
+#include <functional>
+#include <string>
+
+#include "strand/assembly/Assembler.hpp"
+
+namespace strand::solvers {
+
+struct StaticStep {
+  int step = 0;              // accepted load steps so far
+  PetscReal loadFactor = 0;  // in (0, 1]
+  PetscInt newtonIterations = 0;
+  PetscReal residualNorm = 0;
+};
+
+class StaticSolver {
+public:
+  using StepCallback = std::function<PetscErrorCode(const StaticStep&, Vec X)>;
+
+  StaticSolver(assembly::Assembler& assembler, int loadSteps);
+  ~StaticSolver();
+  StaticSolver(const StaticSolver&) = delete;
+  StaticSolver& operator=(const StaticSolver&) = delete;
+
+  PetscErrorCode setFromOptions();
+  PetscErrorCode view(PetscViewer viewer) const;
+  // Solves from the state in X (updated in place); calls onStep after every accepted load step.
+  // *failure is empty on success, else it says where and why the solve stopped and what to try;
+  // X then holds the last converged state.
+  PetscErrorCode solve(Vec X, const StepCallback& onStep, std::string* failure);
+  SNES snes() const { return _snes; }
+  int maxCutbacks = 8;
+
+private:
+  static PetscErrorCode formFunction(SNES, Vec X, Vec R, void* ctx);
+  static PetscErrorCode formJacobian(SNES, Vec X, Mat J, Mat P, void* ctx);
+  assembly::Assembler& _asm;
+  int _loadSteps;
+  PetscReal _loadFactor = 0.0;
+  SNES _snes = nullptr;
+  Mat _J = nullptr;
+  Vec _R = nullptr;
+};
+
+// Direct-solver defaults used by every Strand solver, set only where the user gave no option:
+// PETSc's LU in serial, MUMPS in parallel (design section 3).
+PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm);
+
+}  // namespace strand::solvers

@@ -1,0 +1,338 @@
+#include "strand/assembly/Assembler.hpp"
+
+#include <algorithm>
+
+#include "strand/elements/AncfCable.hpp"
+#include "strand/elements/NodalMoment.hpp"
+
+namespace strand::assembly {
+
+namespace {
+PetscLogEvent evResidual = 0, evJacobian = 0, evMass = 0;
+void registerEvents() {
+  static bool done = false;
+  if (done) return;
+  PetscClassId cid;
+  PetscClassIdRegister("Strand", &cid);
+  PetscLogEventRegister("Strand:Asm:Resid", cid, &evResidual);
+  PetscLogEventRegister("Strand:Asm:Jacob", cid, &evJacobian);
+  PetscLogEventRegister("Strand:Asm:Mass", cid, &evMass);
+  done = true;
+}
+}  // namespace
+
+// Per-dimension data and loops. One object per run; element data are computed once.
+struct Assembler::Impl {
+  virtual ~Impl() = default;
+  virtual void residual(const double* x, double loadFactor, double* r) const = 0;
+  virtual PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const = 0;
+  virtual PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const = 0;
+  virtual double strainEnergy(const double* x) const = 0;
+};
+
+namespace {
+
+template <int D>
+class CableImpl final : public Assembler::Impl {
+  using E = elements::AncfCable<D>;
+  static constexpr int N = E::kDof;
+
+public:
+  CableImpl(const model::Model& m, const model::DofMap& dofs) : _model(m), _dofs(dofs), _tab(m.gaussPoints()), _massTab(4) {
+    // consistent distributed load of one element, per body (uniform elements)
+    for (const model::Body& b : m.bodies()) {
+      std::array<double, N> f{};
+      double p[D];
+      for (int i = 0; i < D; ++i) p[i] = b.loadPerLength[i];
+      E::distributedLoad(geometry(b, 0), _tab, p, f.data());
+      _bodyLoad.push_back(f);
+    }
+    // nodal moments on slope blocks this rank owns
+    for (const model::NodalMomentLoad& ml : m.nodalMoments()) {
+      const PetscInt g = dofs.globalBlock()[ml.slopeBlock];
+      if (g >= dofs.ownedBegin() && g < dofs.ownedEnd()) _moments.push_back({g - dofs.ownedBegin(), ml.moment});
+    }
+  }
+
+  typename E::Geometry geometry(const model::Body& b, int e) const {
+    typename E::Geometry geo;
+    geo.length = b.elementLength;
+    geo.slopeScale[0] = b.slopeScale[e];
+    geo.slopeScale[1] = b.slopeScale[e + 1];
+    if (!b.eps0.empty()) geo.eps0 = &b.eps0[e * _tab.size()];
+    if (!b.kappa0.empty()) geo.kappa0 = &b.kappa0[e * _tab.size()];
+    return geo;
+  }
+
+  void gatherElement(int k, const double* x, double* q) const {
+    const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < D; ++i) q[a * D + i] = x[lb[a] * D + i];
+  }
+
+  void residual(const double* x, double loadFactor, double* r) const override {
+    const auto& els = _model.elements();
+    const auto& local = _dofs.localElements();
+    double q[N], f[N];
+    for (size_t k = 0; k < local.size(); ++k) {
+      const model::ElementRef& er = els[local[k]];
+      const model::Body& b = _model.bodies()[er.body];
+      gatherElement(static_cast<int>(k), x, q);
+      E::force(b.section, geometry(b, er.index), _tab, q, static_cast<const double*>(nullptr), f);
+      const auto& fe = _bodyLoad[er.body];
+      const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < D; ++i) r[lb[a] * D + i] += f[a * D + i] - loadFactor * fe[a * D + i];
+    }
+    for (const auto& ml : _moments) {
+      double Q[D];
+      elements::NodalMoment<D>::force(ml.moment, x + ml.localBlock * D, Q, nullptr);
+      for (int i = 0; i < D; ++i) r[ml.localBlock * D + i] -= loadFactor * Q[i];
+    }
+  }
+
+  PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const override {
+    PetscFunctionBeginUser;
+    const auto& els = _model.elements();
+    const auto& local = _dofs.localElements();
+    double q[N], K[N * N];
+    for (size_t k = 0; k < local.size(); ++k) {
+      const model::ElementRef& er = els[local[k]];
+      const model::Body& b = _model.bodies()[er.body];
+      gatherElement(static_cast<int>(k), x, q);
+      E::tangent(b.section, geometry(b, er.index), _tab, q, nullptr, nullptr, K, nullptr);
+      maskFixed(static_cast<int>(k), fixed, K);
+      PetscCall(MatSetValuesBlocked(J, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], K, ADD_VALUES));
+    }
+    for (const auto& ml : _moments) {
+      double Q[D], dQ[D * D];
+      elements::NodalMoment<D>::force(ml.moment, x + ml.localBlock * D, Q, dQ);
+      for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j) {
+          const PetscInt li = ml.localBlock * D + i, lj = ml.localBlock * D + j;
+          dQ[i * D + j] = (fixed[li] || fixed[lj]) ? 0.0 : -loadFactor * dQ[i * D + j];
+        }
+      const PetscInt g = ml.localBlock + _dofs.ownedBegin();
+      PetscCall(MatSetValuesBlocked(J, 1, &g, 1, &g, dQ, ADD_VALUES));
+    }
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const override {
+    PetscFunctionBeginUser;
+    const auto& els = _model.elements();
+    const auto& local = _dofs.localElements();
+    double Me[N * N];
+    for (size_t k = 0; k < local.size(); ++k) {
+      const model::ElementRef& er = els[local[k]];
+      const model::Body& b = _model.bodies()[er.body];
+      const auto geo = geometry(b, er.index);
+      E::mass(b.section, geo, _massTab, Me);
+      for (const model::PointMass& pm : b.pointMasses)
+        if (pm.element == er.index) E::addPointMass(geo, pm.mass, pm.eta, Me);
+      maskFixed(static_cast<int>(k), fixed, Me);
+      PetscCall(MatSetValuesBlocked(M, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], Me, ADD_VALUES));
+    }
+    PetscFunctionReturn(0);
+  }
+
+  double strainEnergy(const double* x) const override {
+    const auto& els = _model.elements();
+    const auto& local = _dofs.localElements();
+    double q[N], U = 0.0;
+    for (size_t k = 0; k < local.size(); ++k) {
+      const model::ElementRef& er = els[local[k]];
+      const model::Body& b = _model.bodies()[er.body];
+      gatherElement(static_cast<int>(k), x, q);
+      U += E::strainEnergy(b.section, geometry(b, er.index), _tab, q);
+    }
+    return U;
+  }
+
+private:
+  // Zero the rows and columns of supported DOFs (their unit diagonal is added once, elsewhere).
+  void maskFixed(int k, const std::vector<char>& fixed, double* A) const {
+    const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < D; ++i)
+        if (fixed[lb[a] * D + i]) {
+          const int r = a * D + i;
+          for (int c = 0; c < N; ++c) A[r * N + c] = A[c * N + r] = 0.0;
+        }
+  }
+
+  struct OwnedMoment {
+    PetscInt localBlock;
+    model::Vec3 moment;
+  };
+  const model::Model& _model;
+  const model::DofMap& _dofs;
+  elements::CableShapeTable _tab, _massTab;
+  std::vector<std::array<double, N>> _bodyLoad;
+  std::vector<OwnedMoment> _moments;
+};
+
+}  // namespace
+
+Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _model(model), _dofs(dofs) {
+  registerEvents();
+  if (model.dim() == 2)
+    _impl = std::make_unique<CableImpl<2>>(model, dofs);
+  else
+    _impl = std::make_unique<CableImpl<3>>(model, dofs);
+  PetscCallAbort(dofs.comm(), dofs.createVector(&_xWork));
+  PetscCallAbort(dofs.comm(), VecDuplicate(_xWork, &_rWork));
+  // supports and initial coordinates in the ghosted local numbering
+  const PetscInt bs = dofs.blockSize();
+  PetscInt nLocal = 0;
+  {
+    Vec xl;
+    PetscCallAbort(dofs.comm(), VecGhostGetLocalForm(_xWork, &xl));
+    PetscCallAbort(dofs.comm(), VecGetLocalSize(xl, &nLocal));
+    PetscCallAbort(dofs.comm(), VecGhostRestoreLocalForm(_xWork, &xl));
+  }
+  _fixedLocal.assign(nLocal, 0);
+  _q0Local.assign(nLocal, 0.0);
+  _nodalForceOwned.assign(dofs.ownedBlocks() * bs, 0.0);
+  for (int b = 0; b < model.numBlocks(); ++b) {
+    const PetscInt lb = dofs.localBlock(dofs.globalBlock()[b]);
+    if (lb < 0) continue;
+    for (PetscInt i = 0; i < bs; ++i) {
+      _fixedLocal[lb * bs + i] = model.fixedDofs()[b * bs + i];
+      _q0Local[lb * bs + i] = model.initialCoordinates()[b * bs + i];
+      if (lb < dofs.ownedBlocks()) _nodalForceOwned[lb * bs + i] = model.nodalForces()[b * bs + i];
+    }
+  }
+}
+
+Assembler::~Assembler() {
+  VecDestroy(&_xWork);
+  VecDestroy(&_rWork);
+  VecScatterDestroy(&_toRoot);
+  VecDestroy(&_rootVec);
+}
+
+PetscErrorCode Assembler::initialState(Vec X) const {
+  PetscFunctionBeginUser;
+  PetscScalar* x;
+  PetscCall(VecGetArray(X, &x));
+  const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();
+  for (PetscInt i = 0; i < n; ++i) x[i] = _q0Local[i];
+  PetscCall(VecRestoreArray(X, &x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(evResidual, 0, 0, 0, 0));
+  PetscCall(VecCopy(X, _xWork));
+  PetscCall(VecGhostUpdateBegin(_xWork, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(_xWork, INSERT_VALUES, SCATTER_FORWARD));
+  Vec xl, rl;
+  PetscCall(VecGhostGetLocalForm(_xWork, &xl));
+  PetscCall(VecGhostGetLocalForm(_rWork, &rl));
+  PetscCall(VecSet(rl, 0.0));
+  const PetscScalar* x;
+  PetscScalar* r;
+  PetscCall(VecGetArrayRead(xl, &x));
+  PetscCall(VecGetArray(rl, &r));
+  PetscCallCXX(_impl->residual(x, loadFactor, r));
+  PetscCall(VecRestoreArray(rl, &r));
+  PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
+  PetscCall(VecGhostUpdateBegin(_rWork, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGhostUpdateEnd(_rWork, ADD_VALUES, SCATTER_REVERSE));
+  // owned rows: nodal forces and supports
+  PetscCall(VecGetArray(_rWork, &r));
+  const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();
+  for (PetscInt i = 0; i < n; ++i) r[i] -= loadFactor * _nodalForceOwned[i];
+  for (PetscInt i = 0; i < n; ++i)
+    if (_fixedLocal[i]) r[i] = x[i] - _q0Local[i];
+  PetscCall(VecRestoreArray(_rWork, &r));
+  PetscCall(VecRestoreArrayRead(xl, &x));
+  PetscCall(VecGhostRestoreLocalForm(_xWork, &xl));
+  PetscCall(VecCopy(_rWork, R));
+  PetscCall(PetscLogEventEnd(evResidual, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(evJacobian, 0, 0, 0, 0));
+  PetscCall(VecCopy(X, _xWork));
+  PetscCall(VecGhostUpdateBegin(_xWork, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(_xWork, INSERT_VALUES, SCATTER_FORWARD));
+  Vec xl;
+  const PetscScalar* x;
+  PetscCall(VecGhostGetLocalForm(_xWork, &xl));
+  PetscCall(VecGetArrayRead(xl, &x));
+  PetscCall(MatZeroEntries(J));
+  PetscCall(_impl->jacobian(x, loadFactor, J, _fixedLocal));
+  PetscCall(VecRestoreArrayRead(xl, &x));
+  PetscCall(VecGhostRestoreLocalForm(_xWork, &xl));
+  const PetscInt bs = _dofs.blockSize(), n = _dofs.ownedBlocks() * bs, row0 = _dofs.ownedBegin() * bs;
+  for (PetscInt i = 0; i < n; ++i)
+    if (_fixedLocal[i]) PetscCall(MatSetValue(J, row0 + i, row0 + i, 1.0, ADD_VALUES));
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscLogEventEnd(evJacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::massMatrix(Mat M) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(evMass, 0, 0, 0, 0));
+  PetscCall(MatZeroEntries(M));
+  PetscCall(_impl->mass(M, _fixedLocal));
+  PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscLogEventEnd(evMass, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::strainEnergy(Vec X, PetscReal* U) {
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(X, _xWork));
+  PetscCall(VecGhostUpdateBegin(_xWork, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(_xWork, INSERT_VALUES, SCATTER_FORWARD));
+  Vec xl;
+  const PetscScalar* x;
+  PetscCall(VecGhostGetLocalForm(_xWork, &xl));
+  PetscCall(VecGetArrayRead(xl, &x));
+  double local = _impl->strainEnergy(x);
+  PetscCall(VecRestoreArrayRead(xl, &x));
+  PetscCall(VecGhostRestoreLocalForm(_xWork, &xl));
+  PetscCallMPI(MPI_Allreduce(&local, U, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::freeDofs(IS* is) const {
+  PetscFunctionBeginUser;
+  const PetscInt bs = _dofs.blockSize(), n = _dofs.ownedBlocks() * bs, row0 = _dofs.ownedBegin() * bs;
+  std::vector<PetscInt> idx;
+  for (PetscInt i = 0; i < n; ++i)
+    if (!_fixedLocal[i]) idx.push_back(row0 + i);
+  PetscCall(ISCreateGeneral(_dofs.comm(), static_cast<PetscInt>(idx.size()), idx.data(), PETSC_COPY_VALUES, is));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::gatherToRoot(Vec X, std::vector<double>& out) {
+  PetscFunctionBeginUser;
+  if (!_toRoot) PetscCall(VecScatterCreateToZero(X, &_toRoot, &_rootVec));
+  PetscCall(VecScatterBegin(_toRoot, X, _rootVec, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(_toRoot, X, _rootVec, INSERT_VALUES, SCATTER_FORWARD));
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(_dofs.comm(), &rank));
+  out.clear();
+  if (rank == 0) {
+    const PetscScalar* a;
+    PetscCall(VecGetArrayRead(_rootVec, &a));
+    const PetscInt bs = _dofs.blockSize();
+    out.resize(_model.numDofs());
+    for (int b = 0; b < _model.numBlocks(); ++b)
+      for (PetscInt i = 0; i < bs; ++i) out[b * bs + i] = a[_dofs.globalBlock()[b] * bs + i];
+    PetscCall(VecRestoreArrayRead(_rootVec, &a));
+  }
+  PetscFunctionReturn(0);
+}
+
+}  // namespace strand::assembly

@@ -1,0 +1,145 @@
+#include "strand/model/DofMap.hpp"
+
+#include <metis.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace strand::model {
+namespace {
+
+// Rows of a CSR graph with sorted, unique entries: rows[r] lists the blocks sharing an element with r.
+// Self-loops are kept (they are the diagonal block for preallocation) unless dropSelf.
+void buildAdjacency(const std::vector<ElementRef>& elements, int nRows, const std::vector<PetscInt>& rowOf,
+                    bool dropSelf, std::vector<PetscInt>& xadj, std::vector<PetscInt>& adj,
+                    const std::vector<PetscInt>* colOf = nullptr) {
+  xadj.assign(nRows + 1, 0);
+  for (const ElementRef& e : elements)
+    for (int a = 0; a < 4; ++a)
+      if (rowOf[e.blocks[a]] >= 0) xadj[rowOf[e.blocks[a]] + 1] += 4;
+  for (int r = 0; r < nRows; ++r) xadj[r + 1] += xadj[r];
+  adj.assign(xadj[nRows], 0);
+  std::vector<PetscInt> fill(xadj.begin(), xadj.end() - 1);
+  for (const ElementRef& e : elements)
+    for (int a = 0; a < 4; ++a) {
+      const PetscInt r = rowOf[e.blocks[a]];
+      if (r < 0) continue;
+      for (int b = 0; b < 4; ++b) adj[fill[r]++] = colOf ? (*colOf)[e.blocks[b]] : e.blocks[b];
+    }
+  // sort, unique and compact each row
+  PetscInt out = 0;
+  for (int r = 0; r < nRows; ++r) {
+    const PetscInt lo = xadj[r], hi = xadj[r + 1];
+    std::sort(adj.begin() + lo, adj.begin() + hi);
+    const PetscInt start = out;
+    for (PetscInt k = lo; k < hi; ++k) {
+      if (k > lo && adj[k] == adj[k - 1]) continue;
+      if (dropSelf && adj[k] == r) continue;  // only used without colOf (METIS graph)
+      adj[out++] = adj[k];
+    }
+    xadj[r] = start;
+  }
+  xadj[nRows] = out;
+  adj.resize(out);
+}
+
+std::vector<idx_t> metisPartition(const Model& model, int nParts) {
+  const int nb = model.numBlocks();
+  std::vector<idx_t> part(nb, 0);
+  std::vector<PetscInt> identity(nb), xadj, adj;
+  for (int b = 0; b < nb; ++b) identity[b] = b;
+  buildAdjacency(model.elements(), nb, identity, true, xadj, adj);
+  std::vector<idx_t> mx(xadj.begin(), xadj.end()), ma(adj.begin(), adj.end());
+  idx_t nv = nb, ncon = 1, np = nParts, cut = 0;
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_SEED] = 1;  // deterministic partitions
+  const int rc = METIS_PartGraphKway(&nv, &ncon, mx.data(), ma.data(), nullptr, nullptr, nullptr, &np,
+                                     nullptr, nullptr, options, &cut, part.data());
+  if (rc != METIS_OK) throw std::runtime_error("METIS_PartGraphKway failed with code " + std::to_string(rc));
+  return part;
+}
+
+}  // namespace
+
+DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()), _nGlobal(model.numBlocks()) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int nb = model.numBlocks();
+  // 1. partition on rank 0, broadcast
+  std::vector<int> part(nb, 0);
+  if (size > 1) {
+    if (rank == 0) {
+      const std::vector<idx_t> p = metisPartition(model, size);
+      std::copy(p.begin(), p.end(), part.begin());
+    }
+    MPI_Bcast(part.data(), nb, MPI_INT, 0, comm);
+  }
+  // 2. contiguous renumbering: blocks of part 0 first, each part in model order
+  std::vector<PetscInt> offset(size + 1, 0);
+  for (int b = 0; b < nb; ++b) offset[part[b] + 1]++;
+  for (int p = 0; p < size; ++p) offset[p + 1] += offset[p];
+  _begin = offset[rank];
+  _end = offset[rank + 1];
+  _global.resize(nb);
+  for (int b = 0; b < nb; ++b) _global[b] = offset[part[b]]++;
+  // 3. local elements: those whose first block this rank owns; their ghosts
+  const auto& elements = model.elements();
+  for (int e = 0; e < static_cast<int>(elements.size()); ++e) {
+    const PetscInt g = _global[elements[e].blocks[0]];
+    if (g >= _begin && g < _end) _localElements.push_back(e);
+  }
+  for (int e : _localElements)
+    for (int b : elements[e].blocks) {
+      const PetscInt g = _global[b];
+      if (g < _begin || g >= _end) _ghosts.push_back(g);
+    }
+  std::sort(_ghosts.begin(), _ghosts.end());
+  _ghosts.erase(std::unique(_ghosts.begin(), _ghosts.end()), _ghosts.end());
+  for (int e : _localElements)
+    for (int b : elements[e].blocks) {
+      _elGlobal.push_back(_global[b]);
+      _elLocal.push_back(localBlock(_global[b]));
+    }
+  // 4. exact preallocation of the owned block rows (every rank sees every element)
+  std::vector<PetscInt> rowOf(nb, -1), xadj, adj;
+  for (int b = 0; b < nb; ++b)
+    if (_global[b] >= _begin && _global[b] < _end) rowOf[b] = _global[b] - _begin;
+  buildAdjacency(elements, static_cast<int>(_end - _begin), rowOf, false, xadj, adj, &_global);
+  _dnnz.assign(_end - _begin, 0);
+  _onnz.assign(_end - _begin, 0);
+  for (PetscInt r = 0; r < _end - _begin; ++r) {
+    if (xadj[r + 1] == xadj[r]) _dnnz[r] = 1;  // an isolated block still has its diagonal
+    for (PetscInt k = xadj[r]; k < xadj[r + 1]; ++k) (adj[k] >= _begin && adj[k] < _end ? _dnnz[r] : _onnz[r])++;
+  }
+}
+
+PetscInt DofMap::localBlock(PetscInt g) const {
+  if (g >= _begin && g < _end) return g - _begin;
+  auto it = std::lower_bound(_ghosts.begin(), _ghosts.end(), g);
+  if (it == _ghosts.end() || *it != g) return -1;
+  return (_end - _begin) + (it - _ghosts.begin());
+}
+
+PetscErrorCode DofMap::createVector(Vec* v) const {
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateGhostBlock(_comm, _bs, ownedBlocks() * _bs, PETSC_DECIDE, static_cast<PetscInt>(_ghosts.size()),
+                                _ghosts.data(), v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DofMap::createMatrix(Mat* A, const char* prefix, MatType defaultType) const {
+  PetscFunctionBeginUser;
+  PetscCall(MatCreate(_comm, A));
+  PetscCall(MatSetSizes(*A, ownedBlocks() * _bs, ownedBlocks() * _bs, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetBlockSize(*A, _bs));
+  PetscCall(MatSetType(*A, defaultType));
+  if (prefix) PetscCall(MatSetOptionsPrefix(*A, prefix));
+  PetscCall(MatSetFromOptions(*A));
+  PetscCall(MatXAIJSetPreallocation(*A, _bs, _dnnz.data(), _onnz.data(), nullptr, nullptr));
+  PetscCall(MatSetOption(*A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace strand::model

@@ -1,0 +1,89 @@
+// Scenes built in code for tests: same structures the YAML reader fills.
+#pragma once
+#include <petscvec.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "strand/model/SceneDescription.hpp"
+#include "strand/solvers/Problem.hpp"
+#include "strand/solvers/StaticSolver.hpp"
+
+namespace strand::testing {
+
+struct Section {
+  double E = 2.1e11, A = 1e-4, I = 1e-8, rho = 7850.0;  // steel-like, EA/EI = 1e4 m^-2
+};
+
+inline model::BodyDesc straightBody(const std::string& name, int dim, int elements, model::Vec3 start,
+                                    model::Vec3 end, const Section& s = {}) {
+  model::BodyDesc b;
+  b.name = name;
+  b.type = dim == 2 ? model::ElementType::AncfCable2d : model::ElementType::AncfCable3d;
+  b.elements = elements;
+  b.geometry.kind = model::GeometryKind::Line;
+  b.geometry.start = start;
+  b.geometry.end = end;
+  b.E = s.E;
+  b.A = s.A;
+  b.I = s.I;
+  b.rho = s.rho;
+  return b;
+}
+
+// Cantilever along +x from the origin, clamped at node 0.
+inline model::SceneDescription cantilever(int dim, int elements, double length = 1.0, const Section& s = {}) {
+  model::SceneDescription sc;
+  sc.file = "(test)";
+  sc.dimension = dim;
+  sc.bodies.push_back(straightBody("beam", dim, elements, {0, 0, 0}, {length, 0, 0}, s));
+  model::SupportDesc clamp;
+  clamp.at.body = "beam";
+  clamp.at.node = 0;
+  clamp.type = model::SupportType::Clamped;
+  sc.supports.push_back(clamp);
+  return sc;
+}
+
+inline void addTipLoad(model::SceneDescription& sc, model::Vec3 force, model::Vec3 moment = {0, 0, 0}) {
+  model::NodalLoadDesc l;
+  l.at.body = sc.bodies[0].name;
+  l.at.node = -1;
+  l.force = force;
+  l.moment = moment;
+  sc.loads.nodal.push_back(l);
+}
+
+// Static solve; returns the full coordinate vector in model numbering (on every rank).
+inline std::vector<double> solveStatic(solvers::Problem& p, int loadSteps, std::string* failure = nullptr) {
+  Vec X;
+  PetscCallAbort(PETSC_COMM_WORLD, p.dofs().createVector(&X));
+  PetscCallAbort(PETSC_COMM_WORLD, p.assembler().initialState(X));
+  std::string why;
+  {
+    solvers::StaticSolver solver(p.assembler(), loadSteps);
+    PetscCallAbort(PETSC_COMM_WORLD, solver.setFromOptions());
+    PetscCallAbort(PETSC_COMM_WORLD, solver.solve(X, nullptr, &why));
+  }
+  if (failure) *failure = why;
+  std::vector<double> q;
+  PetscCallAbort(PETSC_COMM_WORLD, p.assembler().gatherToRoot(X, q));
+  int n = static_cast<int>(p.model().numDofs());
+  q.resize(n);
+  MPI_Bcast(q.data(), n, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  VecDestroy(&X);
+  return q;
+}
+
+// Position of node `node` (-1: last) of body `b`.
+inline model::Vec3 nodePosition(const solvers::Problem& p, const std::vector<double>& q, int b, int node) {
+  const model::Body& body = p.model().bodies()[b];
+  const int n = node < 0 ? body.elements : node;
+  const int d = p.model().dim();
+  model::Vec3 r{0, 0, 0};
+  for (int i = 0; i < d; ++i) r[i] = q[body.posBlock[n] * d + i];
+  return r;
+}
+
+}  // namespace strand::testing
