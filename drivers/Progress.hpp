@@ -1,0 +1,38 @@
+// One progress line: rewritten in place on a terminal, plain lines in batch jobs (rank 0 only).
+#pragma once
+#include <petscsys.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+
+namespace strand::drivers {
+
+class Progress {
+public:
+  explicit Progress(MPI_Comm comm) {
+    int rank;
+    MPI_Comm_rank(comm, &rank);
+    _active = rank == 0;
+    _tty = _active && isatty(fileno(stdout));
+  }
+  void update(const std::string& line) {
+    if (!_active) return;
+    if (_tty) {
+      std::printf("\r\033[K%s", line.c_str());
+      std::fflush(stdout);
+      _open = true;
+    } else {
+      std::printf("%s\n", line.c_str());
+    }
+  }
+  void finish() {
+    if (_open) std::printf("\n");
+    _open = false;
+  }
+
+private:
+  bool _active = false, _tty = false, _open = false;
+};
+
+}  // namespace strand::drivers

@@ -1,0 +1,201 @@
+// `strand run` and `strand modes`: read a scene, build the problem, solve, write HDF5 + XDMF.
+//
+// Bad input is found before any output file exists (scene reader and model build first), so a
+// wrong scene leaves nothing behind. A diverging solve keeps every frame written so far, marks the
+// file with status = "diverged" and exits with code 3 and a message naming the load step.
+#include <petscsys.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "Commands.hpp"
+#include "Progress.hpp"
+#include "strand/core/Error.hpp"
+#include "strand/io/Frames.hpp"
+#include "strand/io/OutputWriter.hpp"
+#include "strand/io/SceneReader.hpp"
+#include "strand/solvers/ModalSolver.hpp"
+#include "strand/solvers/Problem.hpp"
+#include "strand/solvers/StaticSolver.hpp"
+
+namespace strand::drivers {
+namespace {
+
+const char* kVersion = "0.1.0";
+
+std::string outputPath(const model::SceneDescription& scene) {
+  char buf[PETSC_MAX_PATH_LEN] = "";
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsGetString(nullptr, nullptr, "-o", buf, sizeof(buf), &set);
+  if (set) return buf;
+  if (!scene.output.file.empty()) return scene.output.file;
+  return std::filesystem::path(scene.file).stem().string() + ".h5";
+}
+
+bool hasLoads(const model::SceneDescription& s) {
+  auto nz = [](const model::Vec3& v) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; };
+  return nz(s.loads.gravity) || !s.loads.nodal.empty() || !s.loads.distributed.empty();
+}
+
+std::string fmt(const char* f, double a) {
+  char b[64];
+  std::snprintf(b, sizeof(b), f, a);
+  return b;
+}
+
+class SceneRun {
+public:
+  SceneRun(MPI_Comm comm, const model::SceneDescription& scene, RunMode mode)
+      : _comm(comm), _scene(scene), _mode(mode), _problem(comm, scene), _progress(comm) {
+    MPI_Comm_rank(comm, &_rank);
+  }
+
+  int execute() {
+    const model::Model& m = _problem.model();
+    const bool modal = _mode == RunMode::ForceModes || _scene.analysis == model::Analysis::Modes;
+    const std::string out = outputPath(_scene);
+    io::RunInfo info{_scene.file, modal ? "modes" : "static", kVersion, m.dim()};
+    _writer = std::make_unique<io::OutputWriter>(_comm, out, info, io::bodyLayouts(m, _scene.output.samplesPerElement));
+    say("strand " + std::string(kVersion) + ": " + _scene.file + ": " + std::to_string(m.elements().size()) +
+        " elements, " + std::to_string(m.numDofs()) + " coordinates, " + std::to_string(commSize()) + " rank(s)");
+    Vec X;
+    PetscCallAbort(_comm, _problem.dofs().createVector(&X));
+    PetscCallAbort(_comm, _problem.assembler().initialState(X));
+    PetscLogDouble t0, t1;
+    PetscTime(&t0);
+    int code = kExitSuccess;
+    std::string failure;
+    writeFrame(X, 0.0);
+    if (!modal || hasLoads(_scene)) code = staticSolve(X, &failure);
+    if (code == kExitSuccess && modal) modes(X);
+    PetscTime(&t1);
+    _progress.finish();
+    _writer->setAttribute("status", code == kExitSuccess ? "ok" : "diverged");
+    _writer->setAttribute("wall_time_s", t1 - t0);
+    _writer->close();
+    if (code != kExitSuccess) {
+      if (_rank == 0) std::fprintf(stderr, "strand: error: %s\n", failure.c_str());
+      say("output so far: " + out + " (readable, status = diverged)");
+    } else {
+      summary(X);
+      say("wall time " + fmt("%.3f s", t1 - t0) + "; output: " + out + " (+ " + _writer->xdmfPath() + ")");
+    }
+    VecDestroy(&X);
+    return code;
+  }
+
+private:
+  int commSize() const {
+    int s;
+    MPI_Comm_size(_comm, &s);
+    return s;
+  }
+  void say(const std::string& s) {
+    if (_rank == 0) std::printf("%s\n", s.c_str());
+  }
+
+  void writeFrame(Vec X, double time) {
+    std::vector<double> q;
+    PetscCallAbort(_comm, _problem.assembler().gatherToRoot(X, q));
+    std::vector<io::BodyFrame> frames;
+    if (_rank == 0) frames = io::makeFrames(_problem.model(), q, _scene.output.samplesPerElement);
+    _writer->writeFrame(time, frames);
+  }
+
+  int staticSolve(Vec X, std::string* failure) {
+    solvers::StaticSolver solver(_problem.assembler(), _scene.statics.loadSteps);
+    PetscCallAbort(_comm, solver.setFromOptions());
+    auto onStep = [&](const solvers::StaticStep& s, Vec Xs) -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      _newtonTotal += s.newtonIterations;
+      _progress.update("load step " + std::to_string(s.step) + "  load factor " + fmt("%.4f", s.loadFactor) +
+                       "  Newton " + std::to_string(s.newtonIterations) + "  |R| " + fmt("%.2e", s.residualNorm));
+      PetscCallCXX(writeFrame(Xs, s.loadFactor));
+      PetscCallCXX(_writer->writeScalarSeries("load_factor", s.loadFactor));
+      PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
+      PetscCallCXX(_writer->writeScalarSeries("residual_norm", s.residualNorm));
+      PetscFunctionReturn(0);
+    };
+    PetscCallAbort(_comm, solver.solve(X, onStep, failure));
+    return failure->empty() ? kExitSuccess : kExitDiverged;
+  }
+
+  void modes(Vec X) {
+    solvers::ModalResult r;
+    PetscCallAbort(_comm, solvers::solveModes(_problem.assembler(), X, _scene.modes.count, &r));
+    std::vector<double> hz;
+    std::vector<std::vector<io::BodyFrame>> shapes;
+    // mode shapes are written as the static state plus a scaled mode (scale: 10 % of the longest body)
+    double span = 0.0;
+    for (const model::Body& b : _problem.model().bodies()) span = std::max(span, b.length);
+    Vec Y;
+    PetscCallAbort(_comm, VecDuplicate(X, &Y));
+    for (size_t k = 0; k < r.omega.size(); ++k) {
+      hz.push_back(r.omega[k] / (2.0 * M_PI));
+      PetscReal amax;
+      PetscCallAbort(_comm, VecNorm(r.shapes[k], NORM_INFINITY, &amax));
+      PetscCallAbort(_comm, VecWAXPY(Y, 0.1 * span / amax, r.shapes[k], X));
+      std::vector<double> q;
+      PetscCallAbort(_comm, _problem.assembler().gatherToRoot(Y, q));
+      shapes.push_back(_rank == 0 ? io::makeFrames(_problem.model(), q, _scene.output.samplesPerElement)
+                                  : std::vector<io::BodyFrame>{});
+      say("mode " + std::to_string(k + 1) + ": " + fmt("%.8g Hz", hz.back()) + "  (omega " +
+          fmt("%.8g rad/s", r.omega[k]) + ", residual " + fmt("%.1e", r.relativeResidual[k]) + ")");
+    }
+    _writer->writeModes(hz, shapes);
+    VecDestroy(&Y);
+    solvers::destroyModes(&r);
+  }
+
+  void summary(Vec X) {
+    std::vector<double> q;
+    PetscCallAbort(_comm, _problem.assembler().gatherToRoot(X, q));
+    PetscReal U;
+    PetscCallAbort(_comm, _problem.assembler().strainEnergy(X, &U));
+    if (_rank != 0) return;
+    const model::Model& m = _problem.model();
+    std::ostringstream s;
+    s << "Newton iterations " << _newtonTotal << ", strain energy " << fmt("%.6g J", U);
+    say(s.str());
+    for (size_t b = 0; b < m.bodies().size(); ++b) {
+      const model::Vec3 tip = io::positionOnBody(m, q, static_cast<int>(b), m.bodies()[b].elements - 1, 1.0);
+      say("  body '" + m.bodies()[b].name + "': last node at (" + fmt("%.9g", tip[0]) + ", " + fmt("%.9g", tip[1]) +
+          ", " + fmt("%.9g", tip[2]) + ")");
+    }
+  }
+
+  MPI_Comm _comm;
+  int _rank = 0;
+  model::SceneDescription _scene;
+  RunMode _mode;
+  solvers::Problem _problem;
+  Progress _progress;
+  std::unique_ptr<io::OutputWriter> _writer;
+  PetscInt _newtonTotal = 0;
+};
+
+}  // namespace
+
+int runScene(const char* scenePath, RunMode mode) {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  try {
+    const model::SceneDescription scene = io::readScene(scenePath);
+    SceneRun run(comm, scene, mode);
+    return run.execute();
+  } catch (const InputError& e) {
+    if (rank == 0) std::fprintf(stderr, "strand: bad input: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const SolveError& e) {
+    if (rank == 0) std::fprintf(stderr, "strand: error: %s\n", e.what());
+    return kExitDiverged;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strand: internal error on rank %d: %s\n", rank, e.what());
+    return kExitInternal;
+  }
+}
+
+}  // namespace strand::drivers
