@@ -31,6 +31,7 @@ StaticSolver::StaticSolver(assembly::Assembler& assembler, int loadSteps) : _asm
   // it, so the residual norm first grows; a backtracking line search on ||R|| then stalls at
   // steps of 1e-3 (measured on the elastica tests). Robustness comes from load-step cutbacks.
   PetscCallAbort(dofs.comm(), SNESSetDivergenceTolerance(_snes, -1.0));
+  PetscCallAbort(dofs.comm(), SNESSetConvergenceTest(_snes, convergenceTest, this, nullptr));
   SNESLineSearch ls;
   PetscCallAbort(dofs.comm(), SNESGetLineSearch(_snes, &ls));
   PetscCallAbort(dofs.comm(), SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
@@ -54,6 +55,20 @@ PetscErrorCode StaticSolver::setFromOptions() {
 PetscErrorCode StaticSolver::view(PetscViewer viewer) const {
   PetscFunctionBeginUser;
   PetscCall(SNESView(_snes, viewer));
+  PetscFunctionReturn(0);
+}
+
+// SNESConvergedDefault, except that a small step (CONVERGED_SNORM_RELATIVE) counts only if the
+// residual also fell by 1e-6: with a singular or nearly singular tangent the iterates run away,
+// |x| grows and the relative step shrinks while |R| is 1e28 (seen with an unsupported cable).
+PetscErrorCode StaticSolver::convergenceTest(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
+                                             SNESConvergedReason* reason, void* ctx) {
+  PetscFunctionBeginUser;
+  auto* self = static_cast<StaticSolver*>(ctx);
+  if (it == 0) self->_fnorm0 = fnorm;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
+  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && fnorm > 1e-6 * self->_fnorm0) *reason = SNES_CONVERGED_ITERATING;
+  if (!std::isfinite(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;
   PetscFunctionReturn(0);
 }
 

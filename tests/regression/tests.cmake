@@ -1,1 +1,1 @@
-# regression tests
+strand_test(NAME regression_cli SOURCES regression/test_cli.cpp LABELS regression)

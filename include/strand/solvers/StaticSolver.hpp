@@ -40,10 +40,12 @@ public:
 
 private:
   static PetscErrorCode formFunction(SNES, Vec X, Vec R, void* ctx);
+  static PetscErrorCode convergenceTest(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
+                                        SNESConvergedReason* reason, void* ctx);
   static PetscErrorCode formJacobian(SNES, Vec X, Mat J, Mat P, void* ctx);
   assembly::Assembler& _asm;
   int _loadSteps;
-  PetscReal _loadFactor = 0.0;
+  PetscReal _loadFactor = 0.0, _fnorm0 = 0.0;
   SNES _snes = nullptr;
   Mat _J = nullptr;
   Vec _R = nullptr;

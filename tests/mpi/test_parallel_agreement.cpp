@@ -1,0 +1,122 @@
+// requirement: everything that assembles or solves gives the same answer on 1 and 2 ranks
+// (design section 5). Under mpirun -n 2 each rank also solves the same scene serially on
+// PETSC_COMM_SELF; the distributed solution must agree with it to solver tolerance.
+// Tolerance: the static solves converge to ||R|| / ||R0|| < 1e-10 with LU (serial) vs MUMPS
+// (parallel); for these well-conditioned scenes (EA/EI = 1e4, <= 64 elements, docs/validation.md
+// "Conditioning") the position error of the solve is below 1e-9 L, so 1e-8 L is asserted.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "strand/solvers/ModalSolver.hpp"
+#include "support/Scenes.hpp"
+
+using namespace strand;
+using namespace strand::testing;
+
+namespace {
+
+std::vector<double> solveOn(MPI_Comm comm, const model::SceneDescription& sc, int steps) {
+  solvers::Problem p(comm, sc);
+  Vec X;
+  PetscCallAbort(comm, p.dofs().createVector(&X));
+  PetscCallAbort(comm, p.assembler().initialState(X));
+  std::string failure;
+  {
+    solvers::StaticSolver solver(p.assembler(), steps);
+    PetscCallAbort(comm, solver.setFromOptions());
+    PetscCallAbort(comm, solver.solve(X, nullptr, &failure));
+  }
+  EXPECT_TRUE(failure.empty()) << failure;
+  std::vector<double> q;
+  PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
+  q.resize(p.model().numDofs());
+  MPI_Bcast(q.data(), static_cast<int>(q.size()), MPI_DOUBLE, 0, comm);
+  VecDestroy(&X);
+  return q;
+}
+
+void expectAgreement(const model::SceneDescription& sc, int steps, double length) {
+  const auto par = solveOn(PETSC_COMM_WORLD, sc, steps);
+  const auto ser = solveOn(PETSC_COMM_SELF, sc, steps);
+  ASSERT_EQ(par.size(), ser.size());
+  double diff = 0.0;
+  for (size_t k = 0; k < par.size(); ++k) diff = std::max(diff, std::fabs(par[k] - ser[k]));
+  EXPECT_LT(diff, 1e-8 * length);
+}
+
+// Three cables from the corners of a triangle meet at a hub node, which carries a load.
+model::SceneDescription network(int dim) {
+  model::SceneDescription sc;
+  sc.file = "(test)";
+  sc.dimension = dim;
+  const model::Vec3 hub{0.0, 0.0, 0.0};
+  const model::Vec3 corners[3] = {{1.0, 0.0, 0.0}, {-0.5, 0.8, 0.0}, {-0.5, -0.8, 0.3 * (dim == 3)}};
+  const char* names[3] = {"a", "b", "c"};
+  model::JunctionDesc j;
+  for (int k = 0; k < 3; ++k) {
+    sc.bodies.push_back(straightBody(names[k], dim, 12, corners[k], hub));
+    model::SupportDesc s;
+    s.at.body = names[k];
+    s.at.node = 0;
+    s.type = model::SupportType::Clamped;
+    sc.supports.push_back(s);
+    model::NodeRef r;
+    r.body = names[k];
+    r.node = -1;
+    j.nodes.push_back(r);
+  }
+  sc.junctions.push_back(j);
+  model::NodalLoadDesc l;
+  l.at.body = "a";
+  l.at.node = -1;
+  l.force = {30.0, -50.0, dim == 3 ? 20.0 : 0.0};
+  sc.loads.nodal.push_back(l);
+  sc.loads.gravity = dim == 3 ? model::Vec3{0, 0, -9.81} : model::Vec3{0, -9.81, 0};
+  return sc;
+}
+
+}  // namespace
+
+TEST(ParallelAgreement, SingleChainLargeDeflection) {
+  for (int dim : {2, 3}) {
+    auto sc = cantilever(dim, 64, 1.0);
+    const Section s;
+    addTipLoad(sc, dim == 2 ? model::Vec3{0, -3 * s.E * s.I, 0} : model::Vec3{0, -2 * s.E * s.I, -2 * s.E * s.I});
+    expectAgreement(sc, 8, 1.0);
+  }
+}
+
+TEST(ParallelAgreement, NetworkOfThreeCablesAtOneNode) {
+  for (int dim : {2, 3}) expectAgreement(network(dim), 4, 1.0);
+}
+
+TEST(ParallelAgreement, JunctionSharesPositionButNotSlope) {
+  solvers::Problem p(PETSC_COMM_WORLD, network(3));
+  const auto& b = p.model().bodies();
+  EXPECT_EQ(b[0].posBlock.back(), b[1].posBlock.back());
+  EXPECT_EQ(b[0].posBlock.back(), b[2].posBlock.back());
+  EXPECT_NE(b[0].slopeBlock.back(), b[1].slopeBlock.back());
+  EXPECT_EQ(p.model().numBlocks(), 3 * 2 * 13 - 2);
+}
+
+TEST(ParallelAgreement, ModalFrequencies) {
+  for (int dim : {2, 3}) {
+    auto sc = cantilever(dim, 24, 1.0);
+    double w[2][4] = {};
+    MPI_Comm comms[2] = {PETSC_COMM_WORLD, PETSC_COMM_SELF};
+    for (int c = 0; c < 2; ++c) {
+      solvers::Problem p(comms[c], sc);
+      Vec X;
+      PetscCallAbort(comms[c], p.dofs().createVector(&X));
+      PetscCallAbort(comms[c], p.assembler().initialState(X));
+      solvers::ModalResult r;
+      PetscCallAbort(comms[c], solvers::solveModes(p.assembler(), X, 4, &r));
+      ASSERT_GE(r.omega.size(), 4u);
+      for (int k = 0; k < 4; ++k) w[c][k] = r.omega[k];
+      solvers::destroyModes(&r);
+      VecDestroy(&X);
+    }
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(w[0][k] / w[1][k], 1.0, 1e-10) << "dim " << dim << " mode " << k;
+  }
+}

@@ -1,0 +1,112 @@
+// requirement: the `strand` command (drivers/strand.cpp) answers --help and per-command help,
+// rejects bad input with exit code 2 and a message naming file, line and key, and leaves no output
+// file behind; a diverging solve exits with code 3, names the load step and a remedy, and leaves a
+// readable output file (checked with h5py through tests/support/check_output.py when available);
+// the default scene's result matches its gold values (regression, not verification).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+
+#include "support/Cli.hpp"
+
+using namespace strand::testing;
+namespace fs = std::filesystem;
+
+namespace {
+void writeFile(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+bool haveH5py() { return runCommand("/usr/bin/python3 -c 'import h5py'").exitCode == 0; }
+
+const char* kCantilever = R"(analysis: static
+dimension: 2
+bodies:
+  - name: beam
+    element: AncfCable2d
+    elements: 8
+    geometry: {kind: line, start: [0, 0], end: [1, 0]}
+    section: {E: 2.1e11, A: 1e-4, I: 1e-8, rho: 7850}
+)";
+}  // namespace
+
+TEST(Cli, HelpAndUsage) {
+  auto r = runCommand(strandBinary() + " --help");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.output.find("Usage: strand <command>"), std::string::npos);
+  r = runCommand(strandBinary() + " run --help");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.output.find("-static_snes_monitor"), std::string::npos);
+  r = runCommand(strandBinary() + " help modes");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.output.find("shift-and-invert"), std::string::npos);
+  r = runCommand(strandBinary() + " frobnicate x.yaml");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.output.find("unknown command 'frobnicate'"), std::string::npos);
+}
+
+TEST(Cli, BadSceneExitsWithCode2AndWritesNothing) {
+  const fs::path dir = scratchDir("bad");
+  std::string scene = kCantilever;
+  scene.replace(scene.find("E: 2.1e11"), 9, "E: -2.1e11");
+  writeFile(dir / "bad.yaml", scene);
+  const fs::path out = dir / "bad.h5";
+  auto r = runCommand(strandBinary() + " run " + (dir / "bad.yaml").string() + " -o " + out.string());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.output.find("bad.yaml:8: bodies[0].section.E: must be positive"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(dir / "bad.xmf"));
+  // a scene file that does not exist
+  r = runCommand(strandBinary() + " run " + (dir / "missing.yaml").string() + " -o " + out.string());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.output.find("missing.yaml"), std::string::npos);
+  EXPECT_FALSE(fs::exists(out));
+  // an error found while building the model (junction nodes that do not coincide)
+  writeFile(dir / "junction.yaml", std::string(kCantilever) + R"(  - name: other
+    element: AncfCable2d
+    elements: 2
+    geometry: {kind: line, start: [0, 1], end: [1, 1]}
+    section: {E: 2.1e11, A: 1e-4, I: 1e-8, rho: 7850}
+junctions:
+  - nodes: [{body: beam, node: last}, {body: other, node: 0}]
+)");
+  r = runCommand(strandBinary() + " run " + (dir / "junction.yaml").string() + " -o " + out.string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("does not coincide"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove_all(dir);
+}
+
+TEST(Cli, DivergedSolveExitsWithCode3AndKeepsReadableOutput) {
+  // No support: the tangent is singular (free rigid-body motion), every Newton solve fails.
+  const fs::path dir = scratchDir("diverged");
+  writeFile(dir / "free.yaml", std::string(kCantilever) + "loads: {gravity: [0, -9.81]}\n");
+  const fs::path out = dir / "free.h5";
+  auto r = runCommand(strandBinary() + " run " + (dir / "free.yaml").string() + " -o " + out.string());
+  EXPECT_EQ(r.exitCode, 3) << r.output;
+  EXPECT_NE(r.output.find("diverged at load step 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("check supports"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::exists(out));
+  if (haveH5py()) {
+    auto c = runCommand("/usr/bin/python3 " + sourceDir() + "/tests/support/check_output.py " + out.string());
+    EXPECT_EQ(c.exitCode, 0) << c.output;
+    auto s = runCommand("/usr/bin/python3 -c \"import h5py; f = h5py.File('" + out.string() +
+                        "'); print(f.attrs['status'])\"");
+    EXPECT_NE(s.output.find("diverged"), std::string::npos) << s.output;
+  }
+  fs::remove_all(dir);
+}
+
+// Regression (gold values from a run of this code, commit "strand run/modes driver"): the default
+// scene meshes/hanging-cable.yaml. The verification of the same physics is in docs/validation.md.
+TEST(Cli, DefaultSceneRegression) {
+  const fs::path dir = scratchDir("default");
+  const fs::path out = dir / "hanging.h5";
+  auto r = runCommand(strandBinary() + " run " + sourceDir() + "/meshes/hanging-cable.yaml -o " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("strain energy 0.27076"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("output: " + out.string()), std::string::npos);
+  if (haveH5py()) {
+    auto c = runCommand("/usr/bin/python3 " + sourceDir() + "/tests/support/check_output.py " + out.string());
+    EXPECT_EQ(c.exitCode, 0) << c.output;
+  }
+  fs::remove_all(dir);
+}
