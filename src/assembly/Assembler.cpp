@@ -38,7 +38,8 @@ class CableImpl final : public Assembler::Impl {
   static constexpr int N = E::kDof;
 
 public:
-  CableImpl(const model::Model& m, const model::DofMap& dofs) : _model(m), _dofs(dofs), _tab(m.gaussPoints()), _massTab(4) {
+  CableImpl(const model::Model& m, const model::DofMap& dofs, const std::vector<double>& q0Local)
+      : _model(m), _dofs(dofs), _q0(&q0Local), _tab(m.gaussPoints()), _massTab(4) {
     // consistent distributed load of one element, per body (uniform elements)
     for (const model::Body& b : m.bodies()) {
       std::array<double, N> f{};
@@ -59,34 +60,38 @@ public:
     geo.length = b.elementLength;
     geo.slopeScale[0] = b.slopeScale[e];
     geo.slopeScale[1] = b.slopeScale[e + 1];
-    if (!b.eps0.empty()) geo.eps0 = &b.eps0[e * _tab.size()];
     if (!b.kappa0.empty()) geo.kappa0 = &b.kappa0[e * _tab.size()];
     return geo;
   }
 
-  void gatherElement(int k, const double* x, double* q) const {
+  // Element reference coordinates q0 and displacements u from ghosted-local arrays.
+  void gatherElement(int k, const double* x, double* u, double* q0) const {
     const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
     for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < D; ++i) q[a * D + i] = x[lb[a] * D + i];
+      for (int i = 0; i < D; ++i) {
+        u[a * D + i] = x[lb[a] * D + i];
+        q0[a * D + i] = (*_q0)[lb[a] * D + i];
+      }
   }
 
   void residual(const double* x, double loadFactor, double* r) const override {
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
-    double q[N], f[N];
+    double u[N], q0[N], f[N];
     for (size_t k = 0; k < local.size(); ++k) {
       const model::ElementRef& er = els[local[k]];
       const model::Body& b = _model.bodies()[er.body];
-      gatherElement(static_cast<int>(k), x, q);
-      E::force(b.section, geometry(b, er.index), _tab, q, static_cast<const double*>(nullptr), f);
+      gatherElement(static_cast<int>(k), x, u, q0);
+      E::force(b.section, geometry(b, er.index), _tab, q0, u, static_cast<const double*>(nullptr), f);
       const auto& fe = _bodyLoad[er.body];
       const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
       for (int a = 0; a < 4; ++a)
         for (int i = 0; i < D; ++i) r[lb[a] * D + i] += f[a * D + i] - loadFactor * fe[a * D + i];
     }
     for (const auto& ml : _moments) {
-      double Q[D];
-      elements::NodalMoment<D>::force(ml.moment, x + ml.localBlock * D, Q, nullptr);
+      double Q[D], e[D];
+      slopeOf(ml.localBlock, x, e);
+      elements::NodalMoment<D>::force(ml.moment, e, Q, nullptr);
       for (int i = 0; i < D; ++i) r[ml.localBlock * D + i] -= loadFactor * Q[i];
     }
   }
@@ -95,18 +100,19 @@ public:
     PetscFunctionBeginUser;
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
-    double q[N], K[N * N];
+    double u[N], q0[N], K[N * N];
     for (size_t k = 0; k < local.size(); ++k) {
       const model::ElementRef& er = els[local[k]];
       const model::Body& b = _model.bodies()[er.body];
-      gatherElement(static_cast<int>(k), x, q);
-      E::tangent(b.section, geometry(b, er.index), _tab, q, nullptr, nullptr, K, nullptr);
+      gatherElement(static_cast<int>(k), x, u, q0);
+      E::tangent(b.section, geometry(b, er.index), _tab, q0, u, nullptr, nullptr, K, nullptr);
       maskFixed(static_cast<int>(k), fixed, K);
       PetscCall(MatSetValuesBlocked(J, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], K, ADD_VALUES));
     }
     for (const auto& ml : _moments) {
-      double Q[D], dQ[D * D];
-      elements::NodalMoment<D>::force(ml.moment, x + ml.localBlock * D, Q, dQ);
+      double Q[D], dQ[D * D], e[D];
+      slopeOf(ml.localBlock, x, e);
+      elements::NodalMoment<D>::force(ml.moment, e, Q, dQ);
       for (int i = 0; i < D; ++i)
         for (int j = 0; j < D; ++j) {
           const PetscInt li = ml.localBlock * D + i, lj = ml.localBlock * D + j;
@@ -139,17 +145,21 @@ public:
   double strainEnergy(const double* x) const override {
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
-    double q[N], U = 0.0;
+    double u[N], q0[N], U = 0.0;
     for (size_t k = 0; k < local.size(); ++k) {
       const model::ElementRef& er = els[local[k]];
       const model::Body& b = _model.bodies()[er.body];
-      gatherElement(static_cast<int>(k), x, q);
-      U += E::strainEnergy(b.section, geometry(b, er.index), _tab, q);
+      gatherElement(static_cast<int>(k), x, u, q0);
+      U += E::strainEnergy(b.section, geometry(b, er.index), _tab, q0, u);
     }
     return U;
   }
 
 private:
+  void slopeOf(PetscInt localBlock, const double* x, double* e) const {
+    for (int i = 0; i < D; ++i) e[i] = (*_q0)[localBlock * D + i] + x[localBlock * D + i];
+  }
+
   // Zero the rows and columns of supported DOFs (their unit diagonal is added once, elsewhere).
   void maskFixed(int k, const std::vector<char>& fixed, double* A) const {
     const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
@@ -167,6 +177,7 @@ private:
   };
   const model::Model& _model;
   const model::DofMap& _dofs;
+  const std::vector<double>* _q0;  // reference coordinates, ghosted-local numbering
   elements::CableShapeTable _tab, _massTab;
   std::vector<std::array<double, N>> _bodyLoad;
   std::vector<OwnedMoment> _moments;
@@ -176,10 +187,6 @@ private:
 
 Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _model(model), _dofs(dofs) {
   registerEvents();
-  if (model.dim() == 2)
-    _impl = std::make_unique<CableImpl<2>>(model, dofs);
-  else
-    _impl = std::make_unique<CableImpl<3>>(model, dofs);
   PetscCallAbort(dofs.comm(), dofs.createVector(&_xWork));
   PetscCallAbort(dofs.comm(), VecDuplicate(_xWork, &_rWork));
   // supports and initial coordinates in the ghosted local numbering
@@ -203,6 +210,10 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
       if (lb < dofs.ownedBlocks()) _nodalForceOwned[lb * bs + i] = model.nodalForces()[b * bs + i];
     }
   }
+  if (model.dim() == 2)
+    _impl = std::make_unique<CableImpl<2>>(model, dofs, _q0Local);
+  else
+    _impl = std::make_unique<CableImpl<3>>(model, dofs, _q0Local);
 }
 
 Assembler::~Assembler() {
@@ -214,11 +225,7 @@ Assembler::~Assembler() {
 
 PetscErrorCode Assembler::initialState(Vec X) const {
   PetscFunctionBeginUser;
-  PetscScalar* x;
-  PetscCall(VecGetArray(X, &x));
-  const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();
-  for (PetscInt i = 0; i < n; ++i) x[i] = _q0Local[i];
-  PetscCall(VecRestoreArray(X, &x));
+  PetscCall(VecSet(X, 0.0));  // unknowns are displacements from the reference shape
   PetscFunctionReturn(0);
 }
 
@@ -246,7 +253,7 @@ PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
   const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();
   for (PetscInt i = 0; i < n; ++i) r[i] -= loadFactor * _nodalForceOwned[i];
   for (PetscInt i = 0; i < n; ++i)
-    if (_fixedLocal[i]) r[i] = x[i] - _q0Local[i];
+    if (_fixedLocal[i]) r[i] = x[i];
   PetscCall(VecRestoreArray(_rWork, &r));
   PetscCall(VecRestoreArrayRead(xl, &x));
   PetscCall(VecGhostRestoreLocalForm(_xWork, &xl));
@@ -329,7 +336,8 @@ PetscErrorCode Assembler::gatherToRoot(Vec X, std::vector<double>& out) {
     const PetscInt bs = _dofs.blockSize();
     out.resize(_model.numDofs());
     for (int b = 0; b < _model.numBlocks(); ++b)
-      for (PetscInt i = 0; i < bs; ++i) out[b * bs + i] = a[_dofs.globalBlock()[b] * bs + i];
+      for (PetscInt i = 0; i < bs; ++i)
+        out[b * bs + i] = _model.initialCoordinates()[b * bs + i] + a[_dofs.globalBlock()[b] * bs + i];
     PetscCall(VecRestoreArrayRead(_rootVec, &a));
   }
   PetscFunctionReturn(0);

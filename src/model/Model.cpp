@@ -16,12 +16,12 @@ int nodeIndex(const NodeRef& ref, const Body& b) {
   return static_cast<int>(n);
 }
 
-// Reference strain and curvature of the interpolated initial shape at each Gauss point, so that the
-// initial shape is exactly stress free ("stress_free: initial", 2D only).
+// Reference curvature of the interpolated initial shape at each Gauss point, so that the initial
+// shape is exactly stress free ("stress_free: initial", 2D only; the axial reference is always the
+// initial shape).
 void referenceStrains(Body& body, const std::vector<double>& q0, int gaussPoints) {
   using E = elements::AncfCable2d;
   const elements::CableShapeTable tab(gaussPoints);
-  body.eps0.assign(body.elements * gaussPoints, 0.0);
   body.kappa0.assign(body.elements * gaussPoints, 0.0);
   for (int e = 0; e < body.elements; ++e) {
     E::Geometry geo;
@@ -36,7 +36,6 @@ void referenceStrains(Body& body, const std::vector<double>& q0, int gaussPoints
       double G[E::kG], eps, kap[1];
       E::gather(E::slots(geo, tab.at[g]), q, G);
       E::strains(G, eps, kap);
-      body.eps0[e * gaussPoints + g] = eps;
       body.kappa0[e * gaussPoints + g] = kap[0];
     }
   }

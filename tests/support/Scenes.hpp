@@ -55,7 +55,7 @@ inline void addTipLoad(model::SceneDescription& sc, model::Vec3 force, model::Ve
   sc.loads.nodal.push_back(l);
 }
 
-// Static solve; returns the full coordinate vector in model numbering (on every rank).
+// Static solve; returns the full coordinate vector q = q0 + u in model numbering (on every rank).
 inline std::vector<double> solveStatic(solvers::Problem& p, int loadSteps, std::string* failure = nullptr) {
   Vec X;
   PetscCallAbort(PETSC_COMM_WORLD, p.dofs().createVector(&X));

@@ -23,7 +23,7 @@ struct Fixture {
   CableSection sec;
   typename E::Geometry geo;
   CableShapeTable tab{5};
-  double q[N], v[N];
+  double q0[N], u[N], v[N];  // reference (straight) coordinates, displacement, velocity
   std::mt19937 rng{42};
 
   explicit Fixture(bool damped) {
@@ -35,26 +35,27 @@ struct Fixture {
     geo.length = 0.7;
     geo.slopeScale[0] = 0.7;
     geo.slopeScale[1] = 0.5;
-    // A deformed, curved state: reference straight element plus random perturbation.
-    std::uniform_real_distribution<double> u(-0.15, 0.15);
+    // A deformed, curved state: reference straight element (far from the origin) plus a random displacement.
+    std::uniform_real_distribution<double> r(-0.15, 0.15);
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < D; ++i) {
         double base = 0.0;
-        if (i == 0) base = (a == 0) ? 0.0 : (a == 2) ? geo.length : geo.slopeScale[a / 2];
-        q[a * D + i] = base + u(rng) * ((a % 2) ? geo.slopeScale[a / 2] : geo.length);
-        v[a * D + i] = 3.0 * u(rng);
+        if (i == 0) base = (a == 0) ? 10.0 : (a == 2) ? 10.0 + geo.length : geo.slopeScale[a / 2];
+        q0[a * D + i] = base;
+        u[a * D + i] = r(rng) * ((a % 2) ? geo.slopeScale[a / 2] : geo.length);
+        v[a * D + i] = 3.0 * r(rng);
       }
   }
 
   template <int M>
-  void dualForce(bool seedQ, double* J) const {  // J = df/dq or df/dv, row-major
+  void dualForce(bool seedQ, double* J) const {  // J = df/du or df/dv, row-major
     using Dl = math::Dual<M>;
-    Dl qd[N], vd[N], f[N];
+    Dl ud[N], vd[N], f[N];
     for (int k = 0; k < N; ++k) {
-      qd[k] = seedQ ? Dl::variable(q[k], k) : Dl(q[k]);
+      ud[k] = seedQ ? Dl::variable(u[k], k) : Dl(u[k]);
       vd[k] = seedQ ? Dl(v[k]) : Dl::variable(v[k], k);
     }
-    E::force(sec, geo, tab, qd, vd, f);
+    E::force(sec, geo, tab, q0, ud, vd, f);
     for (int r = 0; r < N; ++r)
       for (int c = 0; c < N; ++c) J[r * N + c] = f[r].d[c];
   }
@@ -79,8 +80,8 @@ TYPED_TEST(AncfCableTest, StiffnessAndDampingTangentsEqualDualNumberDerivatives)
     Fixture<D> fx(damped);
     constexpr int N = Fixture<D>::N;
     double K[N * N], Dm[N * N], f[N], fRef[N], Kad[N * N], Dad[N * N];
-    AncfCable<D>::tangent(fx.sec, fx.geo, fx.tab, fx.q, fx.v, f, K, Dm);
-    AncfCable<D>::force(fx.sec, fx.geo, fx.tab, fx.q, fx.v, fRef);
+    AncfCable<D>::tangent(fx.sec, fx.geo, fx.tab, fx.q0, fx.u, fx.v, f, K, Dm);
+    AncfCable<D>::force(fx.sec, fx.geo, fx.tab, fx.q0, fx.u, fx.v, fRef);
     fx.template dualForce<N>(true, Kad);
     fx.template dualForce<N>(false, Dad);
     const double scaleK = maxAbs(Kad, N * N), scaleF = maxAbs(fRef, N);
@@ -98,21 +99,23 @@ TYPED_TEST(AncfCableTest, TaylorRemainderFallsAsHSquared) {
   double K[N * N], Dm[N * N], f0[N], dir[N], dirV[N];
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int k = 0; k < N; ++k) { dir[k] = 0.1 * u(fx.rng); dirV[k] = u(fx.rng); }
-  AncfCable<D>::tangent(fx.sec, fx.geo, fx.tab, fx.q, fx.v, f0, K, Dm);
+  AncfCable<D>::tangent(fx.sec, fx.geo, fx.tab, fx.q0, fx.u, fx.v, f0, K, Dm);
   // Perturb q and v together: f(q + h dq, v + h dv) - f - h (K dq + D dv) = O(h^2).
   double prev = 0.0;
   for (int level = 0; level < 4; ++level) {
     const double h = 1e-2 / std::pow(2.0, level);
-    double qp[N], vp[N], fp[N];
-    for (int k = 0; k < N; ++k) { qp[k] = fx.q[k] + h * dir[k]; vp[k] = fx.v[k] + h * dirV[k]; }
-    AncfCable<D>::force(fx.sec, fx.geo, fx.tab, qp, vp, fp);
+    double up[N], vp[N], fp[N];
+    for (int k = 0; k < N; ++k) { up[k] = fx.u[k] + h * dir[k]; vp[k] = fx.v[k] + h * dirV[k]; }
+    AncfCable<D>::force(fx.sec, fx.geo, fx.tab, fx.q0, up, vp, fp);
     double err = 0.0;
     for (int r = 0; r < N; ++r) {
       double lin = f0[r];
       for (int c = 0; c < N; ++c) lin += h * (K[r * N + c] * dir[c] + Dm[r * N + c] * dirV[c]);
       err = std::max(err, std::fabs(fp[r] - lin));
     }
-    if (level > 0) EXPECT_NEAR(std::log2(prev / err), 2.0, 0.1) << "h=" << h;
+    if (level > 0) {
+      EXPECT_NEAR(std::log2(prev / err), 2.0, 0.1) << "h=" << h;
+    }
     prev = err;
   }
 }
@@ -122,17 +125,16 @@ TYPED_TEST(AncfCableTest, ForceIsGradientOfEnergyPlusDissipation) {
   Fixture<D> fx(true);
   constexpr int N = Fixture<D>::N;
   using Dl = math::Dual<N>;
-  Dl qd[N], vd[N], qc[N], vc[N];
+  Dl ud[N], vd[N], uc[N];
   for (int k = 0; k < N; ++k) {
-    qd[k] = Dl::variable(fx.q[k], k);
+    ud[k] = Dl::variable(fx.u[k], k);
     vd[k] = Dl::variable(fx.v[k], k);
-    qc[k] = Dl(fx.q[k]);
-    vc[k] = Dl(fx.v[k]);
+    uc[k] = Dl(fx.u[k]);
   }
-  const Dl U = AncfCable<D>::strainEnergy(fx.sec, fx.geo, fx.tab, qd);
-  const Dl R = AncfCable<D>::dissipation(fx.sec, fx.geo, fx.tab, qc, vd);
+  const Dl U = AncfCable<D>::strainEnergy(fx.sec, fx.geo, fx.tab, fx.q0, ud);
+  const Dl R = AncfCable<D>::dissipation(fx.sec, fx.geo, fx.tab, fx.q0, uc, vd);
   double f[N];
-  AncfCable<D>::force(fx.sec, fx.geo, fx.tab, fx.q, fx.v, f);
+  AncfCable<D>::force(fx.sec, fx.geo, fx.tab, fx.q0, fx.u, fx.v, f);
   const double scale = maxAbs(f, N);
   for (int k = 0; k < N; ++k) EXPECT_NEAR(f[k], U.d[k] + R.d[k], 1e-12 * scale);
 }
@@ -166,13 +168,15 @@ TYPED_TEST(AncfCableTest, RigidBodyMotionIsStressFree) {
         for (int j = 0; j < 3; ++j) R[i][j] = Q[i][j];
     }
     double t[3] = {100 * u(rng), 100 * u(rng), 100 * u(rng)}, omega[3] = {u(rng), u(rng), u(rng)};
-    double q[N], v[N];
+    double q[N], q0[N], u[N], v[N];
     for (int a = 0; a < 4; ++a) {
       const bool slope = a % 2;
       const double x = (a < 2) ? 0.0 : geo.length;
       for (int i = 0; i < D; ++i) {
         // straight reference along x: r = (x, 0, 0), sigma r' = (sigma, 0, 0)
+        q0[a * D + i] = (i == 0) ? (slope ? geo.slopeScale[a / 2] : x) : 0.0;
         q[a * D + i] = slope ? R[i][0] * geo.slopeScale[a / 2] : R[i][0] * x + t[i];
+        u[a * D + i] = q[a * D + i] - q0[a * D + i];
       }
       // rigid velocity: v = w x (r - t) (2D: w_z only), same formula for slope vectors
       double rr[3] = {0, 0, 0};
@@ -187,9 +191,9 @@ TYPED_TEST(AncfCableTest, RigidBodyMotionIsStressFree) {
       }
     }
     double f[N];
-    E::force(sec, geo, tab, q, v, f);
-    EXPECT_NEAR(E::strainEnergy(sec, geo, tab, q), 0.0, 1e-18 * sec.EA);
-    EXPECT_NEAR(E::dissipation(sec, geo, tab, q, v), 0.0, 1e-20 * sec.EA);
+    E::force(sec, geo, tab, q0, u, v, f);
+    EXPECT_NEAR(E::strainEnergy(sec, geo, tab, q0, u), 0.0, 1e-18 * sec.EA);
+    EXPECT_NEAR(E::dissipation(sec, geo, tab, q0, u, v), 0.0, 1e-20 * sec.EA);
     for (int k = 0; k < N; ++k) EXPECT_NEAR(f[k], 0.0, 1e-13 * sec.EA) << "trial " << trial;
   }
 }

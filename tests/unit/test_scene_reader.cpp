@@ -274,7 +274,7 @@ TEST(SceneReader, FullScene3dParsesEveryValue) {
 TEST(SceneReader, MinimalSceneGetsDefaults) {
   const SceneDescription s = parseScene(kBase3d, "scene.yaml");
   EXPECT_EQ(s.analysis, Analysis::Static);
-  EXPECT_TRUE(s.discretization.slopeScaling);
+  EXPECT_FALSE(s.discretization.slopeScaling);  // default off: docs/validation.md, "Conditioning"
   EXPECT_EQ(s.discretization.gaussPoints, 5);
   EXPECT_EQ(s.statics.loadSteps, 1);
   EXPECT_EQ(s.modes.count, 6);

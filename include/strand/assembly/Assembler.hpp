@@ -1,9 +1,10 @@
 // The only place where elements meet PETSc (design section 1).
 //
-// Gathers element coordinates from a ghosted Vec, calls the pure kernels, and scatters residuals
-// and tangents into Vec/Mat. Convention (docs/architecture.md): everything on the left-hand side,
-//   R(q) = f_int(q, v) - lambda f_ext(q)   (statics: lambda is the load factor),
-// rows of supported DOFs are replaced by q_i - q0_i with unit diagonal.
+// Gathers element displacements from a ghosted Vec, calls the pure kernels, and scatters residuals
+// and tangents into Vec/Mat. Unknowns are displacements u = q - q0 from the reference shape (see
+// AncfCable.hpp). Convention (docs/architecture.md): everything on the left-hand side,
+//   R(u) = f_int(u, v) - lambda f_ext(u)   (statics: lambda is the load factor),
+// rows of supported DOFs are replaced by u_i with unit diagonal.
 #pragma once
 #include <petscmat.h>
 
@@ -25,9 +26,9 @@ public:
   const model::Model& model() const { return _model; }
   const model::DofMap& dofs() const { return _dofs; }
 
-  // Initial coordinates of the model in the parallel numbering.
+  // Initial state: zero displacement.
   PetscErrorCode initialState(Vec X) const;
-  // Static residual R(X) = f_int(X) - loadFactor f_ext(X); supported rows X - X0.
+  // Static residual R(X) = f_int(X) - loadFactor f_ext(X); supported rows X.
   PetscErrorCode staticResidual(Vec X, PetscReal loadFactor, Vec R);
   // Its Jacobian dR/dX (unit rows and columns at supports).
   PetscErrorCode staticJacobian(Vec X, PetscReal loadFactor, Mat J);
@@ -37,7 +38,7 @@ public:
   PetscErrorCode strainEnergy(Vec X, PetscReal* U);
   // Index set of the free (unsupported) DOFs owned by this rank, global numbering.
   PetscErrorCode freeDofs(IS* is) const;
-  // Scatter a global Vec to a full-length array in model numbering on rank 0 (empty elsewhere).
+  // Coordinates q = q0 + X as a full-length array in model numbering on rank 0 (empty elsewhere).
   PetscErrorCode gatherToRoot(Vec X, std::vector<double>& modelOrdered);
 
   struct Impl;  // dimension-specific kernels (Assembler.cpp)

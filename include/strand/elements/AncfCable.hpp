@@ -7,11 +7,15 @@
 //   r(eta) = sum_a N_a(eta) e_a,  N = [s1, s2 l/sigma_1, s3, s4 l/sigma_2],  eta = x/l in [0, 1].
 //
 // Elastic line approach (Gerstmayr & Irschik, J. Sound Vib. 318 (2008); seed 003 Eq. 60-64):
-//   W = 1/2 EA (eps - eps0)^2 + 1/2 EI |kappa - kappa0|^2 per unit reference length, with
-//   eps = (r'.r' - 1)/2 (Green strain, Eq. 62) and the curvature vector kappa = r' x r'' / |r'|^3
-//   (Eq. 64; a scalar in 2D, so kappa0 != 0 only in 2D).
+//   W = 1/2 EA eps^2 + 1/2 EI |kappa - kappa0|^2 per unit reference length, with the Green strain
+//   eps = (r'.r' - r0'.r0')/2 relative to the reference shape r0 (Eq. 62 for an arc-length
+//   parameterized r0) and the curvature vector kappa = r' x r'' / |r'|^3 (Eq. 64; a scalar in 2D,
+//   so a reference curvature kappa0 != 0 exists only in 2D).
+// Unknowns are displacements u = q - q0 from the reference coordinates q0, and the strain is
+// evaluated as eps = r0'.u' + u'.u'/2: no cancellation, so the residual has no round-off floor of
+// size EA eps_mach L / l (absolute positions of a long cable; docs/validation.md, "Conditioning").
 // Kelvin-Voigt damping on the strain and curvature rates (seed 000 Eq. 31-40):
-//   generalized stresses  N = EA (eps - eps0 + c_eps deps/dt),  m = EI (kappa - kappa0 + c_kap dkappa/dt).
+//   generalized stresses  N = EA (eps + c_eps deps/dt),  m = EI (kappa - kappa0 + c_kap dkappa/dt).
 // In 3D the curvature-vector rate also sees rigid rotations of a curved cable out of its plane;
 // docs/elements/ancf-cable.md states this limitation.
 //
@@ -44,7 +48,6 @@ public:
   struct Geometry {
     double length = 0.0;                 // reference length l of the element [m]
     double slopeScale[2] = {1.0, 1.0};   // sigma of node 1 and 2
-    const double* eps0 = nullptr;        // reference axial strain at each Gauss point (null: 0)
     const double* kappa0 = nullptr;      // reference curvature at each Gauss point, 2D (null: 0)
   };
 
@@ -78,15 +81,16 @@ public:
     }
   }
 
-  // G = (r', r'') at one Gauss point from element coordinates.
+  // G = (r', r'') at one Gauss point from element coordinates. The position weights of B1 and B2
+  // sum to zero, so positions enter relative to node 1: r2 - r1 is exact to eps_mach l, while the
+  // absolute positions of a long cable would put eps_mach |r| / l^2 of noise into r''.
   template <class S>
   static void gather(const Slots& sl, const S* q, S* G) {
-    for (int k = 0; k < kG; ++k) G[k] = S(0.0);
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < D; ++i) {
-        G[i] += sl.B1[a] * q[a * D + i];
-        G[D + i] += sl.B2[a] * q[a * D + i];
-      }
+    for (int i = 0; i < D; ++i) {
+      const S chord = q[2 * D + i] - q[i];
+      G[i] = sl.B1[2] * chord + sl.B1[1] * q[D + i] + sl.B1[3] * q[3 * D + i];
+      G[D + i] = sl.B2[2] * chord + sl.B2[1] * q[D + i] + sl.B2[3] * q[3 * D + i];
+    }
   }
 
   // Axial strain and curvature vector.
@@ -102,18 +106,30 @@ public:
     for (int i = 0; i < kCurv; ++i) kappa[i] = c[i] * inv;
   }
 
+  // Pointwise G = G0 + Gu and the axial strain eps = r0'.u' + u'.u'/2 (no cancellation).
+  template <class S>
+  static S kinematics(const Slots& sl, const double* q0, const S* u, S* G) {
+    double G0[kG];
+    S Gu[kG];
+    gather(sl, q0, G0);
+    gather(sl, u, Gu);
+    S eps(0.0);
+    for (int i = 0; i < D; ++i) eps += G0[i] * Gu[i] + 0.5 * Gu[i] * Gu[i];
+    for (int k = 0; k < kG; ++k) G[k] = G0[k] + Gu[k];
+    return eps;
+  }
+
   // Strain energy of the element (no damping): int W dx.
   template <class S>
   static S strainEnergy(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
-                        const S* q) {
+                        const double* q0, const S* u) {
     S U(0.0);
     for (int g = 0; g < tab.size(); ++g) {
       const Slots sl = slots(geo, tab.at[g]);
-      S G[kG], eps, kap[kCurv];
-      gather(sl, q, G);
-      strains(G, eps, kap);
-      const double e0 = geo.eps0 ? geo.eps0[g] : 0.0;
-      S w = 0.5 * sec.EA * (eps - e0) * (eps - e0);
+      S G[kG], unused, kap[kCurv];
+      const S eps = kinematics(sl, q0, u, G);
+      strains(G, unused, kap);
+      S w = 0.5 * sec.EA * eps * eps;
       for (int i = 0; i < kCurv; ++i) {
         const double k0 = (geo.kappa0 && D == 2) ? geo.kappa0[g * kCurv + i] : 0.0;
         w += 0.5 * sec.EI * (kap[i] - k0) * (kap[i] - k0);
@@ -127,12 +143,12 @@ public:
   // the damping force is dR/dv (tests check it), the dissipated power is 2R.
   template <class S>
   static S dissipation(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
-                       const S* q, const S* v) {
+                       const double* q0, const S* u, const S* v) {
     S R(0.0);
     for (int g = 0; g < tab.size(); ++g) {
       const Slots sl = slots(geo, tab.at[g]);
       S G[kG], Gd[kG];
-      gather(sl, q, G);
+      kinematics(sl, q0, u, G);
       gather(sl, v, Gd);
       S epsDot = G[0] * Gd[0];
       for (int i = 1; i < D; ++i) epsDot += G[i] * Gd[i];
@@ -157,19 +173,19 @@ public:
 
   // ---- residual and tangent ----
 
-  // Internal force f_int(q, v) = dU/dq + dR/dv (elastic + Kelvin-Voigt damping).
+  // Internal force f_int(u, v) = dU/du + dR/dv (elastic + Kelvin-Voigt damping) at q = q0 + u.
   template <class S>
   static void force(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
-                    const S* q, const S* v, S* f) {
+                    const double* q0, const S* u, const S* v, S* f) {
     for (int k = 0; k < kDof; ++k) f[k] = S(0.0);
     const bool damped = v && (sec.dampAxial != 0.0 || sec.dampBending != 0.0);
     for (int g = 0; g < tab.size(); ++g) {
       const Slots sl = slots(geo, tab.at[g]);
       S G[kG], Gd[kG];
-      gather(sl, q, G);
+      const S eps = kinematics(sl, q0, u, G);
       if (damped) gather(sl, v, Gd);
       S fG[kG];
-      pointForce(sec, geo, g, G, damped ? Gd : nullptr, fG);
+      pointForce(sec, geo, g, eps, G, damped ? Gd : nullptr, fG);
       const double wl = tab.rule.w[g] * geo.length;
       for (int a = 0; a < 4; ++a)
         for (int i = 0; i < D; ++i) f[a * D + i] += wl * (sl.B1[a] * fG[i] + sl.B2[a] * fG[D + i]);
@@ -179,7 +195,7 @@ public:
   // K = df/dq and Dm = df/dv (row-major kDof x kDof), returned separately (design section 2).
   // f (optional) receives the internal force; Dm may be null.
   static void tangent(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
-                      const double* q, const double* v, double* f, double* K, double* Dm) {
+                      const double* q0, const double* u, const double* v, double* f, double* K, double* Dm) {
     for (int k = 0; k < kDof * kDof; ++k) K[k] = 0.0;
     if (Dm)
       for (int k = 0; k < kDof * kDof; ++k) Dm[k] = 0.0;
@@ -189,10 +205,10 @@ public:
     for (int g = 0; g < tab.size(); ++g) {
       const Slots sl = slots(geo, tab.at[g]);
       double G[kG], Gd[kG] = {};
-      gather(sl, q, G);
+      const double eps = kinematics(sl, q0, u, G);
       if (damped) gather(sl, v, Gd);
       double fG[kG], KG[kG][kG], DG[kG][kG];
-      pointTangent(sec, geo, g, G, damped ? Gd : nullptr, fG, KG, DG);
+      pointTangent(sec, geo, g, eps, G, damped ? Gd : nullptr, fG, KG, DG);
       const double wl = tab.rule.w[g] * geo.length;
       if (f)
         for (int a = 0; a < 4; ++a)
@@ -239,7 +255,8 @@ public:
 private:
   // Pointwise generalized force f_G = N de/dG + m . dkappa/dG.
   template <class S>
-  static void pointForce(const CableSection& sec, const Geometry& geo, int g, const S* G, const S* Gd, S* fG) {
+  static void pointForce(const CableSection& sec, const Geometry& geo, int g, const S& eps, const S* G, const S* Gd,
+                         S* fG) {
     S s = G[0] * G[0];
     for (int i = 1; i < D; ++i) s += G[i] * G[i];
     using std::sqrt;
@@ -247,8 +264,7 @@ private:
     S c[kCurv], cG[kCurv][kG];
     cross(G, G + D, c);
     crossGradient(G, cG);
-    const double e0 = geo.eps0 ? geo.eps0[g] : 0.0;
-    S tension = sec.EA * (0.5 * (s - 1.0) - e0);
+    S tension = sec.EA * eps;
     if (Gd) {
       S epsDot = G[0] * Gd[0];
       for (int i = 1; i < D; ++i) epsDot += G[i] * Gd[i];
@@ -306,7 +322,7 @@ private:
   //   D_G  = EA c_eps e_G e_G^T + EI c_kap J^T J
   // with P1 = d e_G/dG and the curvature Hessian (A = s^-3/2, B = s^-5/2, s = r'.r')
   //   H_i  = A c_i,GG - 3B (c_i,G e_G^T + e_G c_i,G^T) + 15 c_i s^-7/2 e_G e_G^T - 3 c_i B P1.
-  static void pointTangent(const CableSection& sec, const Geometry& geo, int g, const double* G,
+  static void pointTangent(const CableSection& sec, const Geometry& geo, int g, double eps, const double* G,
                            const double* Gd, double* fG, double KG[kG][kG], double DG[kG][kG]) {
     double s = 0.0;
     for (int i = 0; i < D; ++i) s += G[i] * G[i];
@@ -314,8 +330,7 @@ private:
     double c[kCurv], cG[kCurv][kG];
     cross(G, G + D, c);
     crossGradient(G, cG);
-    const double e0 = geo.eps0 ? geo.eps0[g] : 0.0;
-    double tension = sec.EA * (0.5 * (s - 1.0) - e0);
+    double tension = sec.EA * eps;
     const double cEps = Gd ? sec.dampAxial : 0.0, cKap = Gd ? sec.dampBending : 0.0;
     if (Gd) {
       double epsDot = 0.0;

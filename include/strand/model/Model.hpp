@@ -26,7 +26,7 @@ struct Body {
   elements::CableSection section;
   std::vector<int> posBlock, slopeBlock;  // per node, model numbering
   std::vector<double> slopeScale;         // per node: slope coordinates are sigma * dr/dx
-  std::vector<double> eps0, kappa0;       // per element x Gauss point (empty: straight, stress free)
+  std::vector<double> kappa0;             // 2D reference curvature per element x Gauss point (empty: straight)
   std::vector<PointMass> pointMasses;
   Vec3 loadPerLength{};                   // gravity rho A g plus distributed loads [N/m]
 };
@@ -53,7 +53,9 @@ public:
   int gaussPoints() const { return _gaussPoints; }
   const std::vector<Body>& bodies() const { return _bodies; }
   const std::vector<ElementRef>& elements() const { return _elements; }
-  const std::vector<double>& initialCoordinates() const { return _q0; }  // model numbering
+  // Reference coordinates q0 (model numbering): the initial shape, axially unstretched; the
+  // unknowns are displacements u = q - q0.
+  const std::vector<double>& initialCoordinates() const { return _q0; }
   const std::vector<char>& fixedDofs() const { return _fixed; }          // 1 where a support holds the DOF
   const std::vector<double>& nodalForces() const { return _nodalForce; } // constant nodal forces per DOF
   const std::vector<NodalMomentLoad>& nodalMoments() const { return _moments; }
