@@ -37,7 +37,7 @@ const char* kRunHelp =
     "  analysis: static  SNES Newton with load stepping; options prefix -static_\n"
     "                    (e.g. -static_snes_monitor, -static_snes_rtol 1e-12, -static_pc_type lu)\n"
     "  analysis: modes   static solve (if the scene has loads), then SLEPc; prefix -modal_\n"
-    "                    (e.g. -modal_eps_nev 10, -modal_eps_view)\n"
+    "                    (e.g. -modal_eps_view, -modal_st_pc_factor_mat_solver_type mumps)\n"
     "Options:\n"
     "  -o FILE           output file\n"
     "  -log_view         PETSc performance summary (events Strand:*)\n"
@@ -48,8 +48,8 @@ const char* kModesHelp =
     "\n"
     "Like `strand run`, but always computes natural frequencies and mode shapes about the\n"
     "static state (the initial shape when the scene has no loads): K_T phi = omega^2 M phi on the\n"
-    "unsupported DOFs, shift-and-invert about 0. The number of modes is modes.count in the scene\n"
-    "(or -modal_eps_nev). Frequencies go to stdout and to /modes in the output file.\n";
+    "unsupported DOFs, shift-and-invert about 0. The number of modes is modes.count in the scene.\n"
+    "Frequencies go to stdout and to /modes in the output file.\n";
 
 bool isHelp(const char* a) { return !std::strcmp(a, "-h") || !std::strcmp(a, "--help") || !std::strcmp(a, "-help"); }
 

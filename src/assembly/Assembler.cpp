@@ -48,6 +48,20 @@ public:
       E::distributedLoad(geometry(b, 0), _tab, p, f.data());
       _bodyLoad.push_back(f);
     }
+    // weight of point masses, m N(eta)^T g, on the local elements that carry them
+    const auto& local = dofs.localElements();
+    for (size_t k = 0; k < local.size(); ++k) {
+      const model::ElementRef& er = m.elements()[local[k]];
+      const model::Body& b = m.bodies()[er.body];
+      for (const model::PointMass& pm : b.pointMasses) {
+        if (pm.element != er.index) continue;
+        const auto sl = E::slots(geometry(b, er.index), math::hermite(pm.eta));
+        std::array<double, N> f{};
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < D; ++i) f[a * D + i] = pm.mass * sl.N[a] * m.gravity()[i];
+        _pointMassLoad.push_back({static_cast<int>(k), f});
+      }
+    }
     // nodal moments on slope blocks this rank owns
     for (const model::NodalMomentLoad& ml : m.nodalMoments()) {
       const PetscInt g = dofs.globalBlock()[ml.slopeBlock];
@@ -87,6 +101,11 @@ public:
       const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
       for (int a = 0; a < 4; ++a)
         for (int i = 0; i < D; ++i) r[lb[a] * D + i] += f[a * D + i] - loadFactor * fe[a * D + i];
+    }
+    for (const auto& pl : _pointMassLoad) {
+      const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * pl.localElement];
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < D; ++i) r[lb[a] * D + i] -= loadFactor * pl.force[a * D + i];
     }
     for (const auto& ml : _moments) {
       double Q[D], e[D];
@@ -181,6 +200,11 @@ private:
   elements::CableShapeTable _tab, _massTab;
   std::vector<std::array<double, N>> _bodyLoad;
   std::vector<OwnedMoment> _moments;
+  struct PointMassLoad {
+    int localElement;
+    std::array<double, N> force;
+  };
+  std::vector<PointMassLoad> _pointMassLoad;
 };
 
 }  // namespace

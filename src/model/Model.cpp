@@ -43,7 +43,8 @@ void referenceStrains(Body& body, const std::vector<double>& q0, int gaussPoints
 
 }  // namespace
 
-Model::Model(const SceneDescription& scene) : _dim(scene.dimension), _gaussPoints(scene.discretization.gaussPoints) {
+Model::Model(const SceneDescription& scene)
+    : _dim(scene.dimension), _gaussPoints(scene.discretization.gaussPoints), _gravity(scene.loads.gravity) {
   std::map<std::string, int> bodyIndex;
   std::vector<InitialGeometry> curves;
   std::vector<double> q0;

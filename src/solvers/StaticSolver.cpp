@@ -59,7 +59,7 @@ PetscErrorCode StaticSolver::view(PetscViewer viewer) const {
 }
 
 // SNESConvergedDefault, except that a small Newton correction (CONVERGED_SNORM_RELATIVE,
-// |du| < stol |u|) counts only if the residual also fell by 1e-3:
+// |du| < stol |u|) counts only if |R| has not grown above its value at the start of the load step:
 //  - the residual of a position-based beam has a round-off floor: r'' = sum B2 q cancels terms of
 //    size 1/l, so |R| stalls near EI eps_mach sqrt(N) / l^2 (7.6e-6 of the load for 1000
 //    elements, docs/validation.md "Conditioning") and rtol 1e-10 is unreachable; there the Newton

@@ -1,9 +1,8 @@
 // Assembly benchmark (issue: foundation): residual and tangent assembly of the 3D ANCF cable,
-// time per element on one core for N = 1e3 .. 1e6, and the peak memory of a static solve.
-// Prints JSON lines; no assertion. Rerun: make bench_assembly && ./tests/benchmarks/bench_assembly
-//   options: -max_elements 1000000  -memory_elements 1000000 (0: skip the static-solve memory run)
+// time per element on one core for N = 1e3 .. 1e6 (the memory of a static solve is measured by
+// study_catenary on a 1 km tether). Prints JSON lines; no assertion.
+// Rerun: make bench_assembly && ./tests/benchmarks/bench_assembly [-max_elements 1000000]
 #include <petscsys.h>
-#include <sys/resource.h>
 
 #include <cmath>
 
@@ -13,11 +12,6 @@ using namespace strand;
 using namespace strand::testing;
 
 namespace {
-double maxRssKB() {
-  struct rusage ru;
-  getrusage(RUSAGE_SELF, &ru);
-  return static_cast<double>(ru.ru_maxrss);
-}
 model::SceneDescription hanging(int n) {
   auto sc = cantilever(3, n, 1.0);  // clamped at 0, gravity: a 3D cable cantilever (L = 1 m, d = 10 mm steel)
   sc.bodies[0].A = M_PI * 0.25 * 1e-4;
@@ -29,9 +23,8 @@ model::SceneDescription hanging(int n) {
 
 int main(int argc, char** argv) {
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
-  PetscInt maxN = 1000000, memN = 1000000;
+  PetscInt maxN = 1000000;
   PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-max_elements", &maxN, nullptr));
-  PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-memory_elements", &memN, nullptr));
   for (int n = 1000; n <= maxN; n *= 10) {
     solvers::Problem p(PETSC_COMM_WORLD, hanging(n));
     Vec X, R;
@@ -62,21 +55,6 @@ int main(int argc, char** argv) {
     VecDestroy(&X);
     VecDestroy(&R);
     MatDestroy(&J);
-  }
-  if (memN > 0) {
-    const double before = maxRssKB();
-    PetscLogDouble t0, t1;
-    PetscCall(PetscTime(&t0));
-    solvers::Problem p(PETSC_COMM_WORLD, hanging(static_cast<int>(memN)));
-    std::string failure;
-    solveStatic(p, 1, &failure);
-    PetscCall(PetscTime(&t1));
-    const double peak = maxRssKB();
-    PetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                          "{\"bench\": \"static_memory\", \"element\": \"AncfCable3d\", \"elements\": %d, \"converged\": %s, "
-                          "\"wall_time_s\": %.2f, \"peak_rss_MB\": %.1f, \"peak_rss_before_MB\": %.1f, \"bytes_per_element\": %.0f}\n",
-                          static_cast<int>(memN), failure.empty() ? "true" : "false", t1 - t0, peak / 1024.0, before / 1024.0,
-                          peak * 1024.0 / memN));
   }
   PetscCall(PetscFinalize());
   return 0;

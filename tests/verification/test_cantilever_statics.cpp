@@ -52,6 +52,27 @@ TEST(CantileverStatics, LinearTipDeflectionMatchesFL3Over3EI) {
   }
 }
 
+// requirement: distributed gravity rho A g and the weight of a point mass m g (seed 003 Eq. 53)
+// load the beam consistently: tip deflection rho A g L^4 / (8 EI) + m g L^3 / (3 EI) (Euler-Bernoulli;
+// Hermite elements with consistent loads are exact at the nodes).
+TEST(CantileverStatics, SelfWeightAndTipMassDeflection) {
+  for (int dim : {2, 3}) {
+    const Section s;
+    auto sc = cantilever(dim, 4, 1.0, s);
+    const double g = 1e-4;  // small gravity: linear regime (w/L ~ 1e-7)
+    sc.loads.gravity = dim == 2 ? model::Vec3{0, -g, 0} : model::Vec3{0, 0, -g};
+    model::PointMassDesc pm;
+    pm.at = 1.0;
+    pm.mass = 3.0;
+    sc.bodies[0].pointMasses.push_back(pm);
+    solvers::Problem p(PETSC_COMM_WORLD, sc);
+    const auto q = solveStatic(p, 1);
+    const double EI = s.E * s.I, exact = s.rho * s.A * g / (8.0 * EI) + 3.0 * g / (3.0 * EI);
+    const model::Vec3 tip = nodePosition(p, q, 0, -1);
+    EXPECT_NEAR(-(dim == 2 ? tip[1] : tip[2]) / exact, 1.0, 1e-6) << "dim " << dim;
+  }
+}
+
 TEST(CantileverStatics, LargeDeflectionMatchesElasticaAndConverges) {
   for (int dim : {2, 3}) {
     for (double k : {1.0, 2.0, 5.0, 10.0}) {

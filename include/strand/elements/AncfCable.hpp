@@ -213,9 +213,12 @@ public:
       if (f)
         for (int a = 0; a < 4; ++a)
           for (int i = 0; i < D; ++i) f[a * D + i] += wl * (sl.B1[a] * fG[i] + sl.B2[a] * fG[D + i]);
-      scatterPointMatrix(sl, wl, KG, K);
-      if (Dm && damped) scatterPointMatrix(sl, wl, DG, Dm);
+      scatterPointMatrix(sl, wl, KG, K, !damped);
+      if (Dm && damped) scatterPointMatrix(sl, wl, DG, Dm, false);
     }
+    if (!damped)  // K is symmetric without damping: only blocks b >= a were summed
+      for (int r = 0; r < kDof; ++r)
+        for (int c = (r / D + 1) * D; c < kDof; ++c) K[c * kDof + r] = K[r * kDof + c];
   }
 
   // Consistent mass M = rhoA int N^T N dx (constant). tab must integrate degree 6 exactly (>= 4 points).
@@ -353,59 +356,83 @@ private:
         }
       }
     }
-    // bending part
+    // bending part. sum_i m_i H_i collapses to rank-one terms in w = sum_i m_i c_i,G and
+    // mu = sum_i m_i c_i (plus the constant c_i,GG), so no Hessian is formed per component.
+    double J[kCurv][kG], moment[kCurv], w[kG] = {}, mu = 0.0;
     for (int ci = 0; ci < kCurv; ++ci) {
-      double J[kG], H[kG][kG];
-      for (int k = 0; k < kG; ++k) J[k] = A * cG[ci][k];
-      for (int i = 0; i < D; ++i) J[i] -= 3.0 * c[ci] * B * G[i];
-      for (int a = 0; a < kG; ++a)
-        for (int b = 0; b < kG; ++b) H[a][b] = 0.0;
-      for (int j = 0; j < D; ++j)
-        for (int k = 0; k < D; ++k) {
-          const double e = A * crossHessianE(ci, j, k);
-          H[j][D + k] += e;
-          H[D + k][j] += e;
-        }
-      for (int a = 0; a < kG; ++a)
-        for (int j = 0; j < D; ++j) {
-          const double t = -3.0 * B * cG[ci][a] * G[j];
-          H[a][j] += t;
-          H[j][a] += t;
-        }
-      for (int i = 0; i < D; ++i) {
-        for (int j = 0; j < D; ++j) H[i][j] += 15.0 * c[ci] * C7 * G[i] * G[j];
-        H[i][i] -= 3.0 * c[ci] * B;
-      }
+      for (int k = 0; k < kG; ++k) J[ci][k] = A * cG[ci][k];
+      for (int i = 0; i < D; ++i) J[ci][i] -= 3.0 * c[ci] * B * G[i];
       const double k0 = (geo.kappa0 && D == 2) ? geo.kappa0[g * kCurv + ci] : 0.0;
-      double moment = sec.EI * (c[ci] * A - k0);
-      double HGd[kG] = {};
+      moment[ci] = sec.EI * (c[ci] * A - k0);
       if (Gd) {
         double kDot = 0.0;
-        for (int k = 0; k < kG; ++k) kDot += J[k] * Gd[k];
-        moment += sec.EI * cKap * kDot;
-        for (int a = 0; a < kG; ++a)
-          for (int b = 0; b < kG; ++b) HGd[a] += H[a][b] * Gd[b];
+        for (int k = 0; k < kG; ++k) kDot += J[ci][k] * Gd[k];
+        moment[ci] += sec.EI * cKap * kDot;
       }
+      for (int k = 0; k < kG; ++k) {
+        fG[k] += moment[ci] * J[ci][k];
+        w[k] += moment[ci] * cG[ci][k];
+      }
+      mu += moment[ci] * c[ci];
+    }
+    // EI J^T J
+    for (int ci = 0; ci < kCurv; ++ci)
       for (int a = 0; a < kG; ++a) {
-        fG[a] += moment * J[a];
-        for (int b = 0; b < kG; ++b) {
-          KG[a][b] += sec.EI * J[a] * J[b] + moment * H[a][b];
-          if (Gd) {
-            KG[a][b] += sec.EI * cKap * J[a] * HGd[b];
-            DG[a][b] += sec.EI * cKap * J[a] * J[b];
+        const double t = sec.EI * J[ci][a];
+        for (int b = 0; b < kG; ++b) KG[a][b] += t * J[ci][b];
+      }
+    // sum_i m_i H_i = A sum_i m_i c_i,GG - 3B (w e_G^T + e_G w^T) + 15 mu s^-7/2 e_G e_G^T - 3 mu B P1
+    for (int j = 0; j < D; ++j)
+      for (int k = 0; k < D; ++k) {
+        double e = 0.0;
+        for (int ci = 0; ci < kCurv; ++ci) e += moment[ci] * crossHessianE(ci, j, k);
+        KG[j][D + k] += A * e;
+        KG[D + k][j] += A * e;
+      }
+    for (int a = 0; a < kG; ++a)
+      for (int j = 0; j < D; ++j) {
+        const double t = -3.0 * B * w[a] * G[j];
+        KG[a][j] += t;
+        KG[j][a] += t;
+      }
+    for (int i = 0; i < D; ++i) {
+      for (int j = 0; j < D; ++j) KG[i][j] += 15.0 * mu * C7 * G[i] * G[j];
+      KG[i][i] -= 3.0 * mu * B;
+    }
+    if (Gd && cKap != 0.0) {
+      // EI c_kap sum_i J_i (H_i Gd)^T and D_G = EI c_kap J^T J, with H_i formed only here
+      for (int ci = 0; ci < kCurv; ++ci) {
+        double HGd[kG] = {};
+        for (int j = 0; j < D; ++j)
+          for (int k = 0; k < D; ++k) {
+            const double e = A * crossHessianE(ci, j, k);
+            HGd[j] += e * Gd[D + k];
+            HGd[D + k] += e * Gd[j];
           }
+        double eGd = 0.0, cGGd = 0.0;
+        for (int j = 0; j < D; ++j) eGd += G[j] * Gd[j];
+        for (int k = 0; k < kG; ++k) cGGd += cG[ci][k] * Gd[k];
+        for (int a = 0; a < kG; ++a) HGd[a] += -3.0 * B * cG[ci][a] * eGd;
+        for (int j = 0; j < D; ++j) {
+          HGd[j] += -3.0 * B * G[j] * cGGd + 15.0 * c[ci] * C7 * G[j] * eGd - 3.0 * c[ci] * B * Gd[j];
         }
+        for (int a = 0; a < kG; ++a)
+          for (int b = 0; b < kG; ++b) {
+            KG[a][b] += sec.EI * cKap * J[ci][a] * HGd[b];
+            DG[a][b] += sec.EI * cKap * J[ci][a] * J[ci][b];
+          }
       }
     }
   }
 
-  // Element matrix += wl * sum_{alpha,beta} B_alpha[a] X[alpha i][beta j] B_beta[b].
-  static void scatterPointMatrix(const Slots& sl, double wl, const double X[kG][kG], double* K) {
+  // Element matrix += wl * sum_{alpha,beta} B_alpha[a] X[alpha i][beta j] B_beta[b]; with
+  // upperOnly, only the node-slot blocks b >= a (the caller mirrors a symmetric result).
+  static void scatterPointMatrix(const Slots& sl, double wl, const double X[kG][kG], double* K, bool upperOnly) {
     for (int a = 0; a < 4; ++a) {
       double T[D][kG];  // rows of node-slot a: B1_a X[r', :] + B2_a X[r'', :]
       for (int i = 0; i < D; ++i)
         for (int k = 0; k < kG; ++k) T[i][k] = wl * (sl.B1[a] * X[i][k] + sl.B2[a] * X[D + i][k]);
-      for (int b = 0; b < 4; ++b)
+      for (int b = upperOnly ? a : 0; b < 4; ++b)
         for (int i = 0; i < D; ++i) {
           double* row = K + (a * D + i) * kDof + b * D;
           for (int j = 0; j < D; ++j) row[j] += T[i][j] * sl.B1[b] + T[i][D + j] * sl.B2[b];

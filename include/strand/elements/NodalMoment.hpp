@@ -6,13 +6,13 @@
 // In 2D this is conservative (potential -M theta); in 3D a fixed moment vector is not.
 // Q is configuration dependent, so it has a tangent dQ/de = W/s - 2 (W e) e^T / s^2, s = e . e.
 #pragma once
-#include "strand/model/SceneDescription.hpp"
+#include <array>
 
 namespace strand::elements {
 
 template <int D>
 struct NodalMoment {
-  static void matrixW(const model::Vec3& M, double W[D][D]) {
+  static void matrixW(const std::array<double, 3>& M, double W[D][D]) {
     if constexpr (D == 2) {
       W[0][0] = 0.0; W[0][1] = -M[2];
       W[1][0] = M[2]; W[1][1] = 0.0;
@@ -23,7 +23,7 @@ struct NodalMoment {
     }
   }
   // Q (D entries) and optionally dQ/de (row-major D x D).
-  static void force(const model::Vec3& M, const double* e, double* Q, double* dQ) {
+  static void force(const std::array<double, 3>& M, const double* e, double* Q, double* dQ) {
     double W[D][D], We[D] = {}, s = 0.0;
     matrixW(M, W);
     for (int i = 0; i < D; ++i) {

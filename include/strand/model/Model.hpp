@@ -59,6 +59,7 @@ public:
   const std::vector<char>& fixedDofs() const { return _fixed; }          // 1 where a support holds the DOF
   const std::vector<double>& nodalForces() const { return _nodalForce; } // constant nodal forces per DOF
   const std::vector<NodalMomentLoad>& nodalMoments() const { return _moments; }
+  const Vec3& gravity() const { return _gravity; }  // also acts on point masses
 
 private:
   int _dim = 3, _numBlocks = 0, _gaussPoints = 5;
@@ -67,6 +68,7 @@ private:
   std::vector<double> _q0, _nodalForce;
   std::vector<char> _fixed;
   std::vector<NodalMomentLoad> _moments;
+  Vec3 _gravity{};
 };
 
 }  // namespace strand::model

@@ -1,8 +1,9 @@
 // Large-deflection statics: SNES Newton with load stepping (options prefix "static_").
 //
 // The load factor goes from 0 to 1 in `loadSteps` equal increments; a step whose Newton solve
-// fails is retried with half the increment, up to `maxCutbacks` times, before the solve stops with
-// a SolveError that names the step, the load factor and what to try.
+// fails is retried with half the increment, up to `maxCutbacks` times, before the solve stops and
+// reports (solve()'s failure text) the step, the load factor and what to try; the driver turns
+// that into exit code 3.
 #pragma once
 #include <petscsnes.h>
 
