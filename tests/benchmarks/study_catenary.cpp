@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                        "{\"study\": \"catenary\", \"span_m\": %g, \"elements\": %d, \"ranks\": %d, \"converged\": %s, \"sag\": %.10f, "
+                        "{\"study\": \"catenary\", \"span_m\": %.6e, \"elements\": %d, \"ranks\": %d, \"converged\": %s, \"sag\": %.10f, "
                         "\"sag_elastic_catenary\": %.10f, \"relative_difference\": %.3e, \"H_elastic_catenary\": %.6f, "
                         "\"wall_time_s\": %.3f, \"max_rss_rank0_MB\": %.1f, \"bytes_per_element_rank0\": %.0f}\n",
                         span, static_cast<int>(n), size, failure.empty() ? "true" : "false", -mid[2], ref.midSag,

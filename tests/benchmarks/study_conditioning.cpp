@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
         const double w = -nodePosition(p, q, 0, -1)[1];
         const double exact = F / (3.0 * s.E * s.I);
         PetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                              "{\"study\": \"conditioning\", \"EA_over_EI\": %g, \"slope_scaling\": %s, \"elements\": %d, "
+                              "{\"study\": \"conditioning\", \"EA_over_EI\": %.6e, \"slope_scaling\": %s, \"elements\": %d, "
                               "\"tip_deflection\": %.12e, \"relative_error\": %.3e, \"converged\": %s}\n",
                               ratio, scaled ? "true" : "false", n, w, std::fabs(w / exact - 1.0),
                               failure.empty() ? "true" : "false"));

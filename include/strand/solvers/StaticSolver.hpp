@@ -53,7 +53,7 @@ private:
 };
 
 // Direct-solver defaults used by every Strand solver, set only where the user gave no option:
-// PETSc's LU in serial, MUMPS in parallel (design section 3).
+// PETSc's LU with RCM ordering in serial, MUMPS in parallel (design section 3).
 PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm);
 
 }  // namespace strand::solvers
