@@ -253,19 +253,32 @@ PetscErrorCode Assembler::initialState(Vec X) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
+PetscErrorCode Assembler::beginLocal(Vec X, Vec* xl, const PetscScalar** x) {
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(evResidual, 0, 0, 0, 0));
   PetscCall(VecCopy(X, _xWork));
   PetscCall(VecGhostUpdateBegin(_xWork, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGhostUpdateEnd(_xWork, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostGetLocalForm(_xWork, xl));
+  PetscCall(VecGetArrayRead(*xl, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::endLocal(Vec* xl, const PetscScalar** x) {
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArrayRead(*xl, x));
+  PetscCall(VecGhostRestoreLocalForm(_xWork, xl));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(evResidual, 0, 0, 0, 0));
   Vec xl, rl;
-  PetscCall(VecGhostGetLocalForm(_xWork, &xl));
-  PetscCall(VecGhostGetLocalForm(_rWork, &rl));
-  PetscCall(VecSet(rl, 0.0));
   const PetscScalar* x;
   PetscScalar* r;
-  PetscCall(VecGetArrayRead(xl, &x));
+  PetscCall(beginLocal(X, &xl, &x));
+  PetscCall(VecGhostGetLocalForm(_rWork, &rl));
+  PetscCall(VecSet(rl, 0.0));
   PetscCall(VecGetArray(rl, &r));
   PetscCallCXX(_impl->residual(x, loadFactor, r));
   PetscCall(VecRestoreArray(rl, &r));
@@ -279,8 +292,7 @@ PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
   for (PetscInt i = 0; i < n; ++i)
     if (_fixedLocal[i]) r[i] = x[i];
   PetscCall(VecRestoreArray(_rWork, &r));
-  PetscCall(VecRestoreArrayRead(xl, &x));
-  PetscCall(VecGhostRestoreLocalForm(_xWork, &xl));
+  PetscCall(endLocal(&xl, &x));
   PetscCall(VecCopy(_rWork, R));
   PetscCall(PetscLogEventEnd(evResidual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -289,17 +301,12 @@ PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
 PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evJacobian, 0, 0, 0, 0));
-  PetscCall(VecCopy(X, _xWork));
-  PetscCall(VecGhostUpdateBegin(_xWork, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(_xWork, INSERT_VALUES, SCATTER_FORWARD));
   Vec xl;
   const PetscScalar* x;
-  PetscCall(VecGhostGetLocalForm(_xWork, &xl));
-  PetscCall(VecGetArrayRead(xl, &x));
+  PetscCall(beginLocal(X, &xl, &x));
   PetscCall(MatZeroEntries(J));
   PetscCall(_impl->jacobian(x, loadFactor, J, _fixedLocal));
-  PetscCall(VecRestoreArrayRead(xl, &x));
-  PetscCall(VecGhostRestoreLocalForm(_xWork, &xl));
+  PetscCall(endLocal(&xl, &x));
   const PetscInt bs = _dofs.blockSize(), n = _dofs.ownedBlocks() * bs, row0 = _dofs.ownedBegin() * bs;
   for (PetscInt i = 0; i < n; ++i)
     if (_fixedLocal[i]) PetscCall(MatSetValue(J, row0 + i, row0 + i, 1.0, ADD_VALUES));
@@ -322,16 +329,11 @@ PetscErrorCode Assembler::massMatrix(Mat M) {
 
 PetscErrorCode Assembler::strainEnergy(Vec X, PetscReal* U) {
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(X, _xWork));
-  PetscCall(VecGhostUpdateBegin(_xWork, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(_xWork, INSERT_VALUES, SCATTER_FORWARD));
   Vec xl;
   const PetscScalar* x;
-  PetscCall(VecGhostGetLocalForm(_xWork, &xl));
-  PetscCall(VecGetArrayRead(xl, &x));
+  PetscCall(beginLocal(X, &xl, &x));
   double local = _impl->strainEnergy(x);
-  PetscCall(VecRestoreArrayRead(xl, &x));
-  PetscCall(VecGhostRestoreLocalForm(_xWork, &xl));
+  PetscCall(endLocal(&xl, &x));
   PetscCallMPI(MPI_Allreduce(&local, U, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
   PetscFunctionReturn(0);
 }

@@ -18,21 +18,9 @@ namespace {
 
 std::vector<double> solveOn(MPI_Comm comm, const model::SceneDescription& sc, int steps) {
   solvers::Problem p(comm, sc);
-  Vec X;
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, p.assembler().initialState(X));
   std::string failure;
-  {
-    solvers::StaticSolver solver(p.assembler(), steps);
-    PetscCallAbort(comm, solver.setFromOptions());
-    PetscCallAbort(comm, solver.solve(X, nullptr, &failure));
-  }
+  auto q = solveStatic(p, steps, &failure);
   EXPECT_TRUE(failure.empty()) << failure;
-  std::vector<double> q;
-  PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
-  q.resize(p.model().numDofs());
-  MPI_Bcast(q.data(), static_cast<int>(q.size()), MPI_DOUBLE, 0, comm);
-  VecDestroy(&X);
   return q;
 }
 

@@ -55,23 +55,25 @@ inline void addTipLoad(model::SceneDescription& sc, model::Vec3 force, model::Ve
   sc.loads.nodal.push_back(l);
 }
 
-// Static solve; returns the full coordinate vector q = q0 + u in model numbering (on every rank).
+// Static solve on `comm`; returns the full coordinate vector q = q0 + u in model numbering (on
+// every rank of comm); *failure receives the solver's failure text (empty on success).
 inline std::vector<double> solveStatic(solvers::Problem& p, int loadSteps, std::string* failure = nullptr) {
+  MPI_Comm comm = p.dofs().comm();
   Vec X;
-  PetscCallAbort(PETSC_COMM_WORLD, p.dofs().createVector(&X));
-  PetscCallAbort(PETSC_COMM_WORLD, p.assembler().initialState(X));
+  PetscCallAbort(comm, p.dofs().createVector(&X));
+  PetscCallAbort(comm, p.assembler().initialState(X));
   std::string why;
   {
     solvers::StaticSolver solver(p.assembler(), loadSteps);
-    PetscCallAbort(PETSC_COMM_WORLD, solver.setFromOptions());
-    PetscCallAbort(PETSC_COMM_WORLD, solver.solve(X, nullptr, &why));
+    PetscCallAbort(comm, solver.setFromOptions());
+    PetscCallAbort(comm, solver.solve(X, nullptr, &why));
   }
   if (failure) *failure = why;
   std::vector<double> q;
-  PetscCallAbort(PETSC_COMM_WORLD, p.assembler().gatherToRoot(X, q));
-  int n = static_cast<int>(p.model().numDofs());
+  PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
+  const int n = static_cast<int>(p.model().numDofs());
   q.resize(n);
-  MPI_Bcast(q.data(), n, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  MPI_Bcast(q.data(), n, MPI_DOUBLE, 0, comm);
   VecDestroy(&X);
   return q;
 }

@@ -44,6 +44,10 @@ public:
   struct Impl;  // dimension-specific kernels (Assembler.cpp)
 
 private:
+  // Copy X into the ghosted work vector, update its ghosts, and expose its local form (read only).
+  PetscErrorCode beginLocal(Vec X, Vec* xl, const PetscScalar** x);
+  PetscErrorCode endLocal(Vec* xl, const PetscScalar** x);
+
   const model::Model& _model;
   const model::DofMap& _dofs;
   std::unique_ptr<Impl> _impl;
