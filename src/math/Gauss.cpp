@@ -20,7 +20,6 @@ QuadratureRule gaussLegendre(int n) {
         p0 = p1;
         p1 = pk;
       }
-      if (n == 1) { p1 = x; p0 = 1.0; }
       dp = n * (x * p1 - p0) / (x * x - 1.0);
       const double dx = p1 / dp;
       x -= dx;

@@ -33,9 +33,9 @@ void referenceStrains(Body& body, const std::vector<double>& q0, int gaussPoints
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 2; ++i) q[2 * a + i] = q0[2 * blocks[a] + i];
     for (int g = 0; g < gaussPoints; ++g) {
-      double G[E::kG], eps, kap[1];
+      double G[E::kG], kap[1];
       E::gather(E::slots(geo, tab.at[g]), q, G);
-      E::strains(G, eps, kap);
+      E::curvature(G, kap);
       body.kappa0[e * gaussPoints + g] = kap[0];
     }
   }

@@ -123,11 +123,11 @@ PetscErrorCode StaticSolver::solve(Vec X, const StepCallback& onStep, std::strin
     }
     // failed: restore the last accepted state and halve the increment
     PetscCall(VecCopy(accepted, X));
-    if (++cutbacks > maxCutbacks) {
+    if (++cutbacks > kMaxCutbacks) {
       std::ostringstream msg;
       msg << "static solve diverged at load step " << step + 1 << " (load factor " << _loadFactor
           << ", last converged " << lambda << "): Newton " << SNESConvergedReasons[reason] << " after "
-          << maxCutbacks << " halvings of the load increment. Try more `static: {load_steps: N}`, check"
+          << kMaxCutbacks << " halvings of the load increment. Try more `static: {load_steps: N}`, check"
           << " supports (a free rigid-body motion makes the tangent singular), or add -static_snes_monitor.";
       *failure = msg.str();
       break;

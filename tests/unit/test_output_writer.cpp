@@ -4,6 +4,8 @@
 // last one while the run is still going (flush + atomic .xmf rewrite per frame), and InputError on
 // all ranks when the file cannot be created. Files are checked by reopening them with the HDF5 C API.
 #include <gtest/gtest.h>
+
+#include <type_traits>
 #include <hdf5.h>
 #include <petscsys.h>
 #include <unistd.h>
@@ -116,31 +118,23 @@ std::vector<hsize_t> dimsOf(hid_t file, const std::string& path) {
   return dims;
 }
 
-std::vector<double> readDoubles(hid_t file, const std::string& path) {
-  std::vector<double> out;
+// Whole dataset as a flat vector of T (H5T_NATIVE_DOUBLE for double, H5T_NATIVE_INT for int).
+template <class T>
+std::vector<T> readArray(hid_t file, const std::string& path) {
+  std::vector<T> out;
   hid_t d = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
   EXPECT_GE(d, 0) << path;
   if (d < 0) return out;
   hid_t s = H5Dget_space(d);
   out.resize(H5Sget_simple_extent_npoints(s));
   H5Sclose(s);
-  EXPECT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), 0) << path;
+  const hid_t type = std::is_same_v<T, double> ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT;
+  EXPECT_GE(H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), 0) << path;
   H5Dclose(d);
   return out;
 }
-
-std::vector<int> readInts(hid_t file, const std::string& path) {
-  std::vector<int> out;
-  hid_t d = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
-  EXPECT_GE(d, 0) << path;
-  if (d < 0) return out;
-  hid_t s = H5Dget_space(d);
-  out.resize(H5Sget_simple_extent_npoints(s));
-  H5Sclose(s);
-  EXPECT_GE(H5Dread(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), 0) << path;
-  H5Dclose(d);
-  return out;
-}
+std::vector<double> readDoubles(hid_t file, const std::string& path) { return readArray<double>(file, path); }
+std::vector<int> readInts(hid_t file, const std::string& path) { return readArray<int>(file, path); }
 
 template <class T>
 T readAttr(hid_t file, const std::string& object, const std::string& name, hid_t memType) {

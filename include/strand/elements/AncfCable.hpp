@@ -93,12 +93,11 @@ public:
     }
   }
 
-  // Axial strain and curvature vector.
+  // Curvature vector kappa = r' x r'' / |r'|^3 (the axial strain comes from kinematics()).
   template <class S>
-  static void strains(const S* G, S& eps, S* kappa) {
+  static void curvature(const S* G, S* kappa) {
     S s = G[0] * G[0];
     for (int i = 1; i < D; ++i) s += G[i] * G[i];
-    eps = 0.5 * (s - 1.0);
     using std::sqrt;
     const S inv = 1.0 / (s * sqrt(s));
     S c[kCurv];
@@ -126,9 +125,9 @@ public:
     S U(0.0);
     for (int g = 0; g < tab.size(); ++g) {
       const Slots sl = slots(geo, tab.at[g]);
-      S G[kG], unused, kap[kCurv];
+      S G[kG], kap[kCurv];
       const S eps = kinematics(sl, q0, u, G);
-      strains(G, unused, kap);
+      curvature(G, kap);
       S w = 0.5 * sec.EA * eps * eps;
       for (int i = 0; i < kCurv; ++i) {
         const double k0 = (geo.kappa0 && D == 2) ? geo.kappa0[g * kCurv + i] : 0.0;

@@ -1,7 +1,7 @@
 // Large-deflection statics: SNES Newton with load stepping (options prefix "static_").
 //
 // The load factor goes from 0 to 1 in `loadSteps` equal increments; a step whose Newton solve
-// fails is retried with half the increment, up to `maxCutbacks` times, before the solve stops and
+// fails is retried with half the increment, up to kMaxCutbacks times, before the solve stops and
 // reports (solve()'s failure text) the step, the load factor and what to try; the driver turns
 // that into exit code 3.
 #pragma once
@@ -37,9 +37,9 @@ public:
   // X then holds the last converged state.
   PetscErrorCode solve(Vec X, const StepCallback& onStep, std::string* failure);
   SNES snes() const { return _snes; }
-  int maxCutbacks = 8;
 
 private:
+  static constexpr int kMaxCutbacks = 8;
   static PetscErrorCode formFunction(SNES, Vec X, Vec R, void* ctx);
   static PetscErrorCode convergenceTest(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                                         SNESConvergedReason* reason, void* ctx);
