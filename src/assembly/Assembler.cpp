@@ -40,6 +40,16 @@ class CableImpl final : public Assembler::Impl {
 public:
   CableImpl(const model::Model& m, const model::DofMap& dofs, const std::vector<double>& q0Local)
       : _model(m), _dofs(dofs), _q0(&q0Local), _tab(m.gaussPoints()), _massTab(4) {
+    // shape slots at the Gauss points, per body (uniform elements and slope scales)
+    for (const model::Body& b : m.bodies()) {
+      typename E::Geometry geo;
+      geo.length = b.elementLength;
+      geo.slopeScale[0] = b.slopeScale[0];
+      geo.slopeScale[1] = b.slopeScale[1];
+      std::vector<typename E::Slots> sl;
+      for (int g = 0; g < _tab.size(); ++g) sl.push_back(E::slots(geo, _tab.at[g]));
+      _slots.push_back(std::move(sl));
+    }
     // consistent distributed load of one element, per body (uniform elements)
     for (const model::Body& b : m.bodies()) {
       std::array<double, N> f{};
@@ -75,6 +85,8 @@ public:
     geo.slopeScale[0] = b.slopeScale[e];
     geo.slopeScale[1] = b.slopeScale[e + 1];
     if (!b.kappa0.empty()) geo.kappa0 = &b.kappa0[e * _tab.size()];
+    geo.atGauss = _slots[&b - _model.bodies().data()].data();
+    geo.atGaussOf = &_tab;
     return geo;
   }
 
@@ -199,6 +211,7 @@ private:
   const std::vector<double>* _q0;  // reference coordinates, ghosted-local numbering
   elements::CableShapeTable _tab, _massTab;
   std::vector<std::array<double, N>> _bodyLoad;
+  std::vector<std::vector<typename E::Slots>> _slots;  // per body, at the Gauss points of _tab
   std::vector<OwnedMoment> _moments;
   struct PointMassLoad {
     int localElement;

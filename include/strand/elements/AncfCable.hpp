@@ -45,16 +45,20 @@ public:
   static constexpr int kCurv = (D == 2) ? 1 : 3;  // components of the curvature vector
   static constexpr int kG = 2 * D;                // size of G = (r', r'')
 
-  struct Geometry {
-    double length = 0.0;                 // reference length l of the element [m]
-    double slopeScale[2] = {1.0, 1.0};   // sigma of node 1 and 2
-    const double* kappa0 = nullptr;      // reference curvature at each Gauss point, 2D (null: 0)
-  };
-
   // Shape-function values N and their x-derivatives B1, B2 for the four coordinate slots.
   struct Slots {
     double N[4], B1[4], B2[4];
   };
+
+  struct Geometry {
+    double length = 0.0;                 // reference length l of the element [m]
+    double slopeScale[2] = {1.0, 1.0};   // sigma of node 1 and 2
+    const double* kappa0 = nullptr;      // reference curvature at each Gauss point, 2D (null: 0)
+    // slots() precomputed at the points of one table (uniform elements); used only with that table
+    const Slots* atGauss = nullptr;
+    const CableShapeTable* atGaussOf = nullptr;
+  };
+
   static Slots slots(const Geometry& geo, const math::HermiteValues& h) {
     const double l = geo.length;
     const double scale[4] = {1.0, l / geo.slopeScale[0], 1.0, l / geo.slopeScale[1]};
@@ -65,6 +69,9 @@ public:
       sl.B2[a] = h.dds[a] * scale[a] / (l * l);
     }
     return sl;
+  }
+  static Slots slotsAt(const Geometry& geo, const CableShapeTable& tab, int g) {
+    return (geo.atGauss && geo.atGaussOf == &tab) ? geo.atGauss[g] : slots(geo, tab.at[g]);
   }
 
   // ---- pointwise kinematics, templated on the scalar (double, or math::Dual for tests) ----
@@ -124,7 +131,7 @@ public:
                         const double* q0, const S* u) {
     S U(0.0);
     for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slots(geo, tab.at[g]);
+      const Slots sl = slotsAt(geo, tab, g);
       S G[kG], kap[kCurv];
       const S eps = kinematics(sl, q0, u, G);
       curvature(G, kap);
@@ -145,7 +152,7 @@ public:
                        const double* q0, const S* u, const S* v) {
     S R(0.0);
     for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slots(geo, tab.at[g]);
+      const Slots sl = slotsAt(geo, tab, g);
       S G[kG], Gd[kG];
       kinematics(sl, q0, u, G);
       gather(sl, v, Gd);
@@ -179,16 +186,17 @@ public:
     for (int k = 0; k < kDof; ++k) f[k] = S(0.0);
     const bool damped = v && (sec.dampAxial != 0.0 || sec.dampBending != 0.0);
     for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slots(geo, tab.at[g]);
+      const Slots sl = slotsAt(geo, tab, g);
       S G[kG], Gd[kG];
       const S eps = kinematics(sl, q0, u, G);
       if (damped) gather(sl, v, Gd);
       S fG[kG];
       pointForce(sec, geo, g, eps, G, damped ? Gd : nullptr, fG);
       const double wl = tab.rule.w[g] * geo.length;
-      for (int a = 0; a < 4; ++a)
+      for (int a = 1; a < 4; ++a)
         for (int i = 0; i < D; ++i) f[a * D + i] += wl * (sl.B1[a] * fG[i] + sl.B2[a] * fG[D + i]);
     }
+    for (int i = 0; i < D; ++i) f[i] = -f[2 * D + i];  // B_0 = -B_2 (completeFirstPosition)
   }
 
   // K = df/dq and Dm = df/dv (row-major kDof x kDof), returned separately (design section 2).
@@ -202,7 +210,7 @@ public:
       for (int k = 0; k < kDof; ++k) f[k] = 0.0;
     const bool damped = v && (sec.dampAxial != 0.0 || sec.dampBending != 0.0);
     for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slots(geo, tab.at[g]);
+      const Slots sl = slotsAt(geo, tab, g);
       double G[kG], Gd[kG] = {};
       const double eps = kinematics(sl, q0, u, G);
       if (damped) gather(sl, v, Gd);
@@ -210,21 +218,25 @@ public:
       pointTangent(sec, geo, g, eps, G, damped ? Gd : nullptr, fG, KG, DG);
       const double wl = tab.rule.w[g] * geo.length;
       if (f)
-        for (int a = 0; a < 4; ++a)
+        for (int a = 1; a < 4; ++a)
           for (int i = 0; i < D; ++i) f[a * D + i] += wl * (sl.B1[a] * fG[i] + sl.B2[a] * fG[D + i]);
       scatterPointMatrix(sl, wl, KG, K, !damped);
       if (Dm && damped) scatterPointMatrix(sl, wl, DG, Dm, false);
     }
     if (!damped)  // K is symmetric without damping: only blocks b >= a were summed
-      for (int r = 0; r < kDof; ++r)
+      for (int r = D; r < kDof; ++r)
         for (int c = (r / D + 1) * D; c < kDof; ++c) K[c * kDof + r] = K[r * kDof + c];
+    completeFirstPosition(K);
+    if (Dm && damped) completeFirstPosition(Dm);
+    if (f)
+      for (int i = 0; i < D; ++i) f[i] = -f[2 * D + i];
   }
 
   // Consistent mass M = rhoA int N^T N dx (constant). tab must integrate degree 6 exactly (>= 4 points).
   static void mass(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab, double* M) {
     double m[4][4] = {};
     for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slots(geo, tab.at[g]);
+      const Slots sl = slotsAt(geo, tab, g);
       const double wl = tab.rule.w[g] * geo.length * sec.rhoA;
       for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b) m[a][b] += wl * sl.N[a] * sl.N[b];
@@ -247,7 +259,7 @@ public:
   static void distributedLoad(const Geometry& geo, const CableShapeTable& tab, const double* p, double* f) {
     for (int k = 0; k < kDof; ++k) f[k] = 0.0;
     for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slots(geo, tab.at[g]);
+      const Slots sl = slotsAt(geo, tab, g);
       const double wl = tab.rule.w[g] * geo.length;
       for (int a = 0; a < 4; ++a)
         for (int i = 0; i < D; ++i) f[a * D + i] += wl * sl.N[a] * p[i];
@@ -424,19 +436,30 @@ private:
     }
   }
 
-  // Element matrix += wl * sum_{alpha,beta} B_alpha[a] X[alpha i][beta j] B_beta[b]; with
-  // upperOnly, only the node-slot blocks b >= a (the caller mirrors a symmetric result).
+  // Element matrix += wl * sum_{alpha,beta} B_alpha[a] X[alpha i][beta j] B_beta[b] for the slots
+  // a, b = 1..3; with upperOnly, only the blocks b >= a (the caller mirrors a symmetric result).
+  // Slot 0 (position of node 1) follows from completeFirstPosition.
   static void scatterPointMatrix(const Slots& sl, double wl, const double X[kG][kG], double* K, bool upperOnly) {
-    for (int a = 0; a < 4; ++a) {
+    for (int a = 1; a < 4; ++a) {
       double T[D][kG];  // rows of node-slot a: B1_a X[r', :] + B2_a X[r'', :]
       for (int i = 0; i < D; ++i)
         for (int k = 0; k < kG; ++k) T[i][k] = wl * (sl.B1[a] * X[i][k] + sl.B2[a] * X[D + i][k]);
-      for (int b = upperOnly ? a : 0; b < 4; ++b)
+      for (int b = upperOnly ? a : 1; b < 4; ++b)
         for (int i = 0; i < D; ++i) {
           double* row = K + (a * D + i) * kDof + b * D;
           for (int j = 0; j < D; ++j) row[j] += T[i][j] * sl.B1[b] + T[i][D + j] * sl.B2[b];
         }
     }
+  }
+
+  // The strains see the positions only through the chord r_2 - r_1 (gather), so the derivative
+  // weights of the two position slots are opposite (B_0 = -B_2): the rows and the columns of
+  // slot 0 are minus those of slot 2, and block (0, 0) equals block (2, 2).
+  static void completeFirstPosition(double* K) {
+    for (int r = D; r < kDof; ++r)
+      for (int j = 0; j < D; ++j) K[r * kDof + j] = -K[r * kDof + 2 * D + j];
+    for (int i = 0; i < D; ++i)
+      for (int c = 0; c < kDof; ++c) K[i * kDof + c] = -K[(2 * D + i) * kDof + c];
   }
 };
 
