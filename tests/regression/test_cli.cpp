@@ -105,8 +105,11 @@ TEST(Cli, DefaultSceneRegression) {
   EXPECT_NE(r.output.find("strain energy 0.27076"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("output: " + out.string()), std::string::npos);
   if (haveH5py()) {
-    auto c = runCommand("/usr/bin/python3 " + sourceDir() + "/tests/support/check_output.py " + out.string());
+    // --pvpython: also open the XDMF with ParaView's Xdmf3 reader when python3-paraview is installed
+    auto c = runCommand("/usr/bin/python3 " + sourceDir() + "/tests/support/check_output.py --pvpython " +
+                        out.string());
     EXPECT_EQ(c.exitCode, 0) << c.output;
+    std::printf("%s\n", c.output.c_str());
   }
   fs::remove_all(dir);
 }
