@@ -27,6 +27,7 @@ struct Assembler::Impl {
   virtual void residual(const double* x, double loadFactor, double* r) const = 0;
   virtual PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const = 0;
   virtual PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const = 0;
+  virtual PetscErrorCode gyroscopic(Mat G, const std::vector<char>& fixed) const = 0;
   virtual double strainEnergy(const double* x) const = 0;
 };
 
@@ -49,6 +50,26 @@ public:
       std::vector<typename E::Slots> sl;
       for (int g = 0; g < _tab.size(); ++g) sl.push_back(E::slots(geo, _tab.at[g]));
       _slots.push_back(std::move(sl));
+    }
+    // slot mass of one element, per body, and the rotation axis operators
+    for (const model::Body& b : m.bodies()) {
+      double Me[N * N];
+      E::mass(b.section, geometry(b, 0), _massTab, Me);
+      std::array<double, 16> sm{};
+      for (int a = 0; a < 4; ++a)
+        for (int c = 0; c < 4; ++c) sm[a * 4 + c] = Me[(a * D) * N + c * D];
+      _slotMass.push_back(sm);
+    }
+    const model::Vec3& e = m.rotation().axis;
+    if constexpr (D == 2) {
+      const double P[4] = {1, 0, 0, 1}, S[4] = {0, -1, 1, 0};  // rotation about z: in-plane
+      std::copy(P, P + 4, _projector);
+      std::copy(S, S + 4, _skew);
+    } else {
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) _projector[i * 3 + j] = (i == j ? 1.0 : 0.0) - e[i] * e[j];
+      const double S[9] = {0, -e[2], e[1], e[2], 0, -e[0], -e[1], e[0], 0};
+      std::copy(S, S + 9, _skew);
     }
     // consistent distributed load of one element, per body (uniform elements)
     for (const model::Body& b : m.bodies()) {
@@ -101,6 +122,7 @@ public:
   }
 
   void residual(const double* x, double loadFactor, double* r) const override {
+    const double omega2 = _model.rotation().omega * _model.rotation().omega;
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
     double u[N], q0[N], f[N];
@@ -109,6 +131,7 @@ public:
       const model::Body& b = _model.bodies()[er.body];
       gatherElement(static_cast<int>(k), x, u, q0);
       E::force(b.section, geometry(b, er.index), _tab, q0, u, static_cast<const double*>(nullptr), f);
+      if (omega2 != 0.0) addCentrifugalForce(er, b, q0, u, loadFactor * omega2, f);
       const auto& fe = _bodyLoad[er.body];
       const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
       for (int a = 0; a < 4; ++a)
@@ -129,6 +152,7 @@ public:
 
   PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const override {
     PetscFunctionBeginUser;
+    const double omega2 = _model.rotation().omega * _model.rotation().omega;
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
     double u[N], q0[N], K[N * N];
@@ -137,6 +161,7 @@ public:
       const model::Body& b = _model.bodies()[er.body];
       gatherElement(static_cast<int>(k), x, u, q0);
       E::tangent(b.section, geometry(b, er.index), _tab, q0, u, nullptr, nullptr, K, nullptr);
+      if (omega2 != 0.0) addMassBlocks(er, b, -loadFactor * omega2, _projector, K);  // softening -Omega^2 M_P
       maskFixed(static_cast<int>(k), fixed, K);
       PetscCall(MatSetValuesBlocked(J, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], K, ADD_VALUES));
     }
@@ -173,6 +198,24 @@ public:
     PetscFunctionReturn(0);
   }
 
+  // Coriolis (gyroscopic) matrix of the rotating frame, G = 2 Omega int rho A N^T [e]x N dx (plus
+  // point masses): the Coriolis force 2 m Omega e x v on the left-hand side; G is skew-symmetric.
+  PetscErrorCode gyroscopic(Mat G, const std::vector<char>& fixed) const override {
+    PetscFunctionBeginUser;
+    const auto& els = _model.elements();
+    const auto& local = _dofs.localElements();
+    double Ge[N * N];
+    for (size_t k = 0; k < local.size(); ++k) {
+      const model::ElementRef& er = els[local[k]];
+      const model::Body& b = _model.bodies()[er.body];
+      for (double& g : Ge) g = 0.0;
+      addMassBlocks(er, b, 2.0 * _model.rotation().omega, _skew, Ge);
+      maskFixed(static_cast<int>(k), fixed, Ge);
+      PetscCall(MatSetValuesBlocked(G, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], Ge, ADD_VALUES));
+    }
+    PetscFunctionReturn(0);
+  }
+
   double strainEnergy(const double* x) const override {
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
@@ -187,6 +230,49 @@ public:
   }
 
 private:
+  // Nodal-slot mass m_ab = rho A int N_a N_b dx + sum m N_a N_b over the element's point masses:
+  // the element mass matrix is m (x) I_D (AncfCable::mass).
+  void slotMass(const model::ElementRef& er, const model::Body& b, double m[4][4]) const {
+    const auto& base = _slotMass[er.body];
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < 4; ++c) m[a][c] = base[a * 4 + c];
+    for (const model::PointMass& pm : b.pointMasses) {
+      if (pm.element != er.index) continue;
+      const auto sl = E::slots(geometry(b, er.index), math::hermite(pm.eta));
+      for (int a = 0; a < 4; ++a)
+        for (int c = 0; c < 4; ++c) m[a][c] += pm.mass * sl.N[a] * sl.N[c];
+    }
+  }
+
+  // A += s m (x) X for a D x D matrix X (row-major): blocks s m_ab X.
+  void addMassBlocks(const model::ElementRef& er, const model::Body& b, double s, const double* X, double* A) const {
+    double m[4][4];
+    slotMass(er, b, m);
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < 4; ++c)
+        for (int i = 0; i < D; ++i)
+          for (int j = 0; j < D; ++j) A[(a * D + i) * N + c * D + j] += s * m[a][c] * X[i * D + j];
+  }
+
+  // Centrifugal force on the left-hand side, f -= Omega^2 (m (x) P) (q - c~): the centrifugal
+  // load Omega^2 int rho A N^T P (r - c) dx, with the axis point c interpolated exactly by the
+  // position slots (c~: c at positions, 0 at slopes). Seed 003 Eq. 49: lambda^2 (M q + delta S_x).
+  void addCentrifugalForce(const model::ElementRef& er, const model::Body& b, const double* q0, const double* u,
+                           double omega2, double* f) const {
+    double m[4][4];
+    slotMass(er, b, m);
+    double w[N];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < D; ++i) w[a * D + i] = q0[a * D + i] + u[a * D + i] - (a % 2 == 0 ? _model.rotation().center[i] : 0.0);
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < 4; ++c)
+        for (int i = 0; i < D; ++i) {
+          double pw = 0.0;
+          for (int j = 0; j < D; ++j) pw += _projector[i * D + j] * w[c * D + j];
+          f[a * D + i] -= omega2 * m[a][c] * pw;
+        }
+  }
+
   void slopeOf(PetscInt localBlock, const double* x, double* e) const {
     for (int i = 0; i < D; ++i) e[i] = (*_q0)[localBlock * D + i] + x[localBlock * D + i];
   }
@@ -212,6 +298,8 @@ private:
   elements::CableShapeTable _tab, _massTab;
   std::vector<std::array<double, N>> _bodyLoad;
   std::vector<std::vector<typename E::Slots>> _slots;  // per body, at the Gauss points of _tab
+  std::vector<std::array<double, 16>> _slotMass;       // per body: m_ab of one element (no point masses)
+  double _projector[D * D], _skew[D * D];              // P = I - e e^T and [e]x of the rotation axis e
   std::vector<OwnedMoment> _moments;
   struct PointMassLoad {
     int localElement;
@@ -337,6 +425,15 @@ PetscErrorCode Assembler::massMatrix(Mat M) {
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(evMass, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::gyroscopicMatrix(Mat G) {
+  PetscFunctionBeginUser;
+  PetscCall(MatZeroEntries(G));
+  PetscCall(_impl->gyroscopic(G, _fixedLocal));
+  PetscCall(MatAssemblyBegin(G, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(G, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
 }
 

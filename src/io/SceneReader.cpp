@@ -282,6 +282,16 @@ const Choice<model::SupportType> kSupportTypes[] = {{"clamped", model::SupportTy
                                                     {"pinned", model::SupportType::Pinned},
                                                     {"fixed", model::SupportType::Fixed}};
 
+const Choice<model::ModalMethod> kModalMethods[] = {{"auto", model::ModalMethod::Auto},
+                                                    {"eps", model::ModalMethod::Eps},
+                                                    {"pep", model::ModalMethod::Pep},
+                                                    {"projected", model::ModalMethod::Projected}};
+
+const Choice<model::SweepParameter> kSweepParameters[] = {{"gamma", model::SweepParameter::Gamma},
+                                                          {"omega", model::SweepParameter::Omega},
+                                                          {"mass_ratio", model::SweepParameter::MassRatio},
+                                                          {"mass_location", model::SweepParameter::MassLocation}};
+
 const Choice<bool> kStressFree[] = {{"straight", false}, {"initial", true}};
 
 struct ElementTypeInfo {
@@ -463,18 +473,29 @@ void readSection(const Field& f, BodyDesc& body) {
   }
 }
 
+// Point masses: position `at` [m] or `location` (fraction of the body length, seed 003's beta);
+// size `mass` [kg] or `mass_ratio` (mass / (rho A L), seed 003's alpha).
 void readPointMasses(const Field& f, BodyDesc& body) {
   const double length = bodyLength(body.geometry);
   for (const Field& item : f.items()) {
-    item.expectMap({"at", "mass"});
+    item.expectMap({"at", "location", "mass", "mass_ratio"});
     model::PointMassDesc pm;
     pm.mark = item.mark();
-    const Field at = item.child("at");
-    pm.at = at.number();
-    if (pm.at < 0.0 || pm.at > length * (1.0 + kRelTol))
-      at.fail("must be within [0, " + fmt(length) + "], the length of body '" + body.name + "' (got " +
-              fmt(pm.at) + ")");
-    pm.mass = requirePositive(item.child("mass"));
+    const Field at = item.child("at"), location = item.child("location");
+    if (at.present() == location.present()) item.fail("give exactly one of 'at' [m] and 'location' (at / L)");
+    if (at.present()) {
+      pm.at = at.number();
+      if (pm.at < 0.0 || pm.at > length * (1.0 + kRelTol))
+        at.fail("must be within [0, " + fmt(length) + "], the length of body '" + body.name + "' (got " +
+                fmt(pm.at) + ")");
+    } else {
+      const double beta = location.number();
+      if (beta < 0.0 || beta > 1.0) location.fail("must be within [0, 1] (got " + fmt(beta) + ")");
+      pm.at = beta * length;
+    }
+    const Field mass = item.child("mass"), ratio = item.child("mass_ratio");
+    if (mass.present() == ratio.present()) item.fail("give exactly one of 'mass' [kg] and 'mass_ratio' (mass / (rho A L))");
+    pm.mass = mass.present() ? requirePositive(mass) : requirePositive(ratio) * body.rho * body.A * length;
     body.pointMasses.push_back(pm);
   }
 }
@@ -519,7 +540,7 @@ public:
     const Field root(rootNode, "", ctx_.file, lineOf(rootNode, 1));
     if (!root.present()) root.fail("the scene is empty; expected a map of scene keys");
     root.expectMap({"analysis", "dimension", "discretization", "bodies", "supports", "junctions", "loads",
-                    "static", "modes", "output"});
+                    "static", "modes", "rotation", "sweep", "output"});
     scene_.analysis = pick(root.child("analysis"), "analysis", kAnalyses).value;
     scene_.dimension = ctx_.dim = requireIntInRange(root.child("dimension"), 2, 3);
     if (const Field f = root.child("discretization"); f.present()) readDiscretization(f);
@@ -532,17 +553,95 @@ public:
       if (const Field steps = f.child("load_steps"); steps.present())
         scene_.statics.loadSteps = requireIntAtLeast(steps, 1);
     }
-    if (const Field f = root.child("modes"); f.present()) {
-      f.expectMap({"count"});
-      if (const Field count = f.child("count"); count.present())
-        scene_.modes.count = requireIntAtLeast(count, 1);
-    }
+    if (const Field f = root.child("modes"); f.present()) readModes(f);
+    if (const Field f = root.child("rotation"); f.present()) readRotation(f);
+    if (const Field f = root.child("sweep"); f.present()) readSweep(f);
     if (const Field f = root.child("output"); f.present()) readOutput(f);
     checkCatenaryDefaults();
     return scene_;
   }
 
 private:
+  void readModes(const Field& f) {
+    f.expectMap({"count", "coriolis", "method", "projection_modes"});
+    if (const Field count = f.child("count"); count.present()) scene_.modes.count = requireIntAtLeast(count, 1);
+    if (const Field c = f.child("coriolis"); c.present()) scene_.modes.coriolis = c.boolean();
+    if (const Field m = f.child("method"); m.present()) scene_.modes.method = pick(m, "modal method", kModalMethods).value;
+    if (const Field m = f.child("projection_modes"); m.present()) {
+      scene_.modes.projectionModes = requireIntAtLeast(m, 1);
+      if (scene_.modes.projectionModes < scene_.modes.count)
+        m.fail("must be at least modes.count = " + std::to_string(scene_.modes.count));
+    }
+  }
+
+  // Dimensionless scales of the first body (seed 003): T* = sqrt(rho A L^4 / (E I)), L.
+  double referenceTime() const {
+    const BodyDesc& b = scene_.bodies.front();
+    const double L = bodyLength(b.geometry);
+    return std::sqrt(b.rho * b.A * L * L * L * L / (b.E * b.I));
+  }
+
+  // rotation: omega [rad/s] or gamma (= omega T*); axis (3D); center, or hub_radius [m] /
+  // hub_radius_ratio (delta: hub radius / L) measured back from the first node of the first body,
+  // which must then be a straight line.
+  void readRotation(const Field& f) {
+    f.expectMap({"omega", "gamma", "axis", "center", "hub_radius", "hub_radius_ratio"});
+    model::RotationDesc& r = scene_.rotation;
+    r.present = true;
+    r.mark = f.mark();
+    const Field omega = f.child("omega"), gamma = f.child("gamma");
+    if (omega.present() == gamma.present()) f.fail("give exactly one of 'omega' [rad/s] and 'gamma' (omega sqrt(rho A L^4 / EI))");
+    r.omega = omega.present() ? requireNonNegative(omega) : requireNonNegative(gamma) / referenceTime();
+    if (const Field axis = f.child("axis"); axis.present()) {
+      if (ctx_.dim == 2) axis.fail("a 2D scene rotates about z; remove 'axis'");
+      r.axis = readDirection(axis, 3);
+    }
+    const Field center = f.child("center"), hub = f.child("hub_radius"), ratio = f.child("hub_radius_ratio");
+    if (int(center.present()) + int(hub.present()) + int(ratio.present()) > 1)
+      f.fail("give at most one of 'center', 'hub_radius' and 'hub_radius_ratio'");
+    const BodyDesc& b = scene_.bodies.front();
+    if (center.present()) {
+      r.center = readVector(center, ctx_.dim);
+    } else {
+      const Field& given = hub.present() ? hub : ratio;
+      if (b.geometry.kind != model::GeometryKind::Line)
+        (given.present() ? given : f).fail("the hub radius is measured along the first body, which must be a straight 'line'; give 'center' instead");
+      const double L = bodyLength(b.geometry);
+      const double R = hub.present() ? requireNonNegative(hub) : ratio.present() ? requireNonNegative(ratio) * L : 0.0;
+      for (int i = 0; i < 3; ++i)
+        r.center[i] = b.geometry.start[i] - R * (b.geometry.end[i] - b.geometry.start[i]) / L;
+    }
+  }
+
+  void readSweep(const Field& f) {
+    f.expectMap({"parameter", "from", "to", "points", "mass"});
+    model::SweepDesc& s = scene_.sweep;
+    s.present = true;
+    s.mark = f.mark();
+    s.parameter = pick(f.child("parameter"), "sweep parameter", kSweepParameters).value;
+    s.from = f.child("from").number();
+    s.to = f.child("to").number();
+    s.points = requireIntAtLeast(f.child("points"), 2);
+    const bool massSweep = s.parameter == model::SweepParameter::MassRatio || s.parameter == model::SweepParameter::MassLocation;
+    if (const Field m = f.child("mass"); m.present()) {
+      if (!massSweep) m.fail("only mass_ratio and mass_location sweeps move a point mass");
+      s.mass = requireIntAtLeast(m, 0);
+    }
+    if (massSweep && s.mass >= static_cast<int>(scene_.bodies.front().pointMasses.size()))
+      f.fail("a " + std::string(s.parameter == model::SweepParameter::MassRatio ? "mass_ratio" : "mass_location") +
+             " sweep needs point mass " + std::to_string(s.mass) + " on body '" + scene_.bodies.front().name + "'");
+    const bool nonNegative = s.parameter != model::SweepParameter::MassLocation;
+    for (const char* key : {"from", "to"}) {
+      const double v = f.child(key).number();
+      if (nonNegative && v < 0.0) f.child(key).fail("must not be negative (got " + fmt(v) + ")");
+      if (s.parameter == model::SweepParameter::MassLocation && (v < 0.0 || v > 1.0))
+        f.child(key).fail("a mass location is a fraction of the body length, within [0, 1] (got " + fmt(v) + ")");
+      if (s.parameter == model::SweepParameter::MassRatio && v <= 0.0) f.child(key).fail("a mass ratio must be positive (got " + fmt(v) + ")");
+    }
+    if ((s.parameter == model::SweepParameter::Gamma || s.parameter == model::SweepParameter::Omega) && !scene_.rotation.present)
+      f.fail("an angular-speed sweep needs a 'rotation' section (its axis and hub)");
+  }
+
   void readDiscretization(const Field& f) {
     f.expectMap({"slope_scaling", "gauss_points"});
     if (const Field s = f.child("slope_scaling"); s.present())

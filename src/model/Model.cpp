@@ -44,7 +44,8 @@ void referenceStrains(Body& body, const std::vector<double>& q0, int gaussPoints
 }  // namespace
 
 Model::Model(const SceneDescription& scene)
-    : _dim(scene.dimension), _gaussPoints(scene.discretization.gaussPoints), _gravity(scene.loads.gravity) {
+    : _dim(scene.dimension), _gaussPoints(scene.discretization.gaussPoints), _gravity(scene.loads.gravity),
+      _rotation(scene.rotation) {
   std::map<std::string, int> bodyIndex;
   std::vector<InitialGeometry> curves;
   std::vector<double> q0;
@@ -69,6 +70,7 @@ Model::Model(const SceneDescription& scene)
       const int e = std::min(static_cast<int>(x / b.elementLength), b.elements - 1);
       b.pointMasses.push_back({e, x / b.elementLength - e, pm.mass});
     }
+    if (_bodies.empty()) _scales = {b.length, b.section.rhoA, b.section.EI, b.section.EA};
     bodyIndex[b.name] = static_cast<int>(_bodies.size());
     _bodies.push_back(std::move(b));
   }
@@ -152,5 +154,8 @@ Model::Model(const SceneDescription& scene)
     for (int k = 0; k < 3; ++k) b.loadPerLength[k] += l.forcePerLength[k];
   }
 }
+
+double ReferenceScales::time() const { return std::sqrt(rhoA * length * length * length * length / EI); }
+double ReferenceScales::slenderness() const { return std::sqrt(EA * length * length / EI); }
 
 }  // namespace strand::model

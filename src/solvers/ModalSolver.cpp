@@ -1,100 +1,359 @@
 #include "strand/solvers/ModalSolver.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <complex>
 
 #include "strand/solvers/StaticSolver.hpp"
 
 namespace strand::solvers {
 
-PetscErrorCode solveModes(assembly::Assembler& assembler, Vec X, int nev, ModalResult* result) {
-  PetscFunctionBeginUser;
-  const model::DofMap& dofs = assembler.dofs();
-  MPI_Comm comm = dofs.comm();
-  Mat K, M, Kf, Mf;
-  IS free;
-  PetscCall(dofs.createMatrix(&K, "modal_", MATAIJ));
-  PetscCall(dofs.createMatrix(&M, "modal_", MATAIJ));
-  PetscCall(assembler.staticJacobian(X, 1.0, K));
-  PetscCall(assembler.massMatrix(M));
-  PetscCall(assembler.freeDofs(&free));
-  PetscCall(MatCreateSubMatrix(K, free, free, MAT_INITIAL_MATRIX, &Kf));
-  PetscCall(MatCreateSubMatrix(M, free, free, MAT_INITIAL_MATRIX, &Mf));
+namespace {
+constexpr int kPepMaxDofs = 5000;  // auto: TOAR up to this size, projection above (design section 4)
 
-  EPS eps;
-  ST st;
-  KSP ksp;
-  PetscCall(EPSCreate(comm, &eps));
-  PetscCall(EPSSetOptionsPrefix(eps, "modal_"));
-  PetscCall(EPSSetOperators(eps, Kf, Mf));
-  PetscCall(EPSSetProblemType(eps, EPS_GHEP));
-  PetscCall(EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
-  PetscCall(EPSSetTarget(eps, 0.0));
-  PetscCall(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
-  PetscCall(EPSSetTolerances(eps, 1e-12, 200));
-  PetscCall(EPSGetST(eps, &st));
-  PetscCall(STSetType(st, STSINVERT));
-  PetscCall(STGetKSP(st, &ksp));
-  PetscCall(setDirectSolverDefaults(ksp, comm));
-  PetscCall(EPSSetFromOptions(eps));
-  PetscCall(EPSSolve(eps));
+// Rotate a complex vector x = xr + i xi by a phase so that its real part carries the most energy
+// (a real mode shape for output and node finding).
+PetscErrorCode alignPhase(Vec xr, Vec xi) {
+  PetscFunctionBeginUser;
+  PetscScalar rr, ii, ri;
+  PetscCall(VecDot(xr, xr, &rr));
+  PetscCall(VecDot(xi, xi, &ii));
+  PetscCall(VecDot(xr, xi, &ri));
+  const double th = 0.5 * std::atan2(2.0 * ri, rr - ii), c = std::cos(th), s = std::sin(th);
+  Vec t;
+  PetscCall(VecDuplicate(xr, &t));
+  PetscCall(VecCopy(xr, t));
+  PetscCall(VecAXPBY(xr, s, c, xi));   // xr = c xr + s xi
+  PetscCall(VecAXPBY(xi, -s, c, t));   // xi = c xi - s xr
+  PetscCall(VecDestroy(&t));
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
+ModalSolver::ModalSolver(assembly::Assembler& assembler, const ModalOptions& options)
+    : _asm(assembler), _opt(options), _method(options.method) {
+  if (_opt.projectionModes <= 0) _opt.projectionModes = std::max(2 * _opt.count, _opt.count + 10);
+  if (_method == model::ModalMethod::Auto) {
+    if (!_opt.coriolis) _method = model::ModalMethod::Eps;
+    else _method = assembler.model().numDofs() <= kPepMaxDofs ? model::ModalMethod::Pep : model::ModalMethod::Projected;
+  }
+}
+
+ModalSolver::~ModalSolver() {
+  for (Vec& v : _previous) VecDestroy(&v);
+  EPSDestroy(&_eps);
+  PEPDestroy(&_pep);
+  ISDestroy(&_free);
+  for (Mat* m : {&_K, &_M, &_G, &_Kf, &_Mf, &_Gf}) MatDestroy(m);
+}
+
+PetscErrorCode ModalSolver::assemble(Vec X) {
+  PetscFunctionBeginUser;
+  const model::DofMap& dofs = _asm.dofs();
+  const bool needG = _method != model::ModalMethod::Eps;
+  const MatReuse reuse = _K ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX;
+  if (!_K) {
+    PetscCall(dofs.createMatrix(&_K, "modal_", MATAIJ));
+    PetscCall(dofs.createMatrix(&_M, "modal_", MATAIJ));
+    if (needG) PetscCall(dofs.createMatrix(&_G, "modal_", MATAIJ));
+    PetscCall(_asm.freeDofs(&_free));
+  }
+  PetscCall(_asm.staticJacobian(X, 1.0, _K));  // K_T = K - Omega^2 M_P
+  PetscCall(_asm.massMatrix(_M));
+  if (needG) {
+    if (_opt.coriolis) PetscCall(_asm.gyroscopicMatrix(_G));
+    else {
+      PetscCall(MatZeroEntries(_G));
+      PetscCall(MatAssemblyBegin(_G, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(_G, MAT_FINAL_ASSEMBLY));
+    }
+  }
+  PetscCall(MatCreateSubMatrix(_K, _free, _free, reuse, &_Kf));
+  PetscCall(MatCreateSubMatrix(_M, _free, _free, reuse, &_Mf));
+  if (needG) PetscCall(MatCreateSubMatrix(_G, _free, _free, reuse, &_Gf));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ModalSolver::toFull(Vec freeVec, Vec* full) {
+  PetscFunctionBeginUser;
+  const PetscInt* idx;
+  PetscInt n;
+  PetscCall(ISGetLocalSize(_free, &n));
+  PetscCall(ISGetIndices(_free, &idx));
+  PetscCall(_asm.dofs().createVector(full));
+  PetscCall(VecSet(*full, 0.0));
+  const PetscScalar* a;
+  PetscCall(VecGetArrayRead(freeVec, &a));
+  PetscCall(VecSetValues(*full, n, idx, a, INSERT_VALUES));
+  PetscCall(VecRestoreArrayRead(freeVec, &a));
+  PetscCall(ISRestoreIndices(_free, &idx));
+  PetscCall(VecAssemblyBegin(*full));
+  PetscCall(VecAssemblyEnd(*full));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ModalSolver::solve(Vec X, ModalResult* result) {
+  PetscFunctionBeginUser;
+  PetscCall(assemble(X));
+  switch (_method) {
+    case model::ModalMethod::Pep: PetscCall(solvePep(result)); break;
+    case model::ModalMethod::Projected: PetscCall(solveProjected(result)); break;
+    default: PetscCall(solveEps(_opt.count, result)); break;
+  }
+  PetscFunctionReturn(0);
+}
+
+// Generalized Hermitian problem; eigenvectors are M-normalized (SLEPc, GHEP). Also keeps the
+// free-DOF eigenvectors in _previous (warm start, projection basis).
+PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
+  PetscFunctionBeginUser;
+  MPI_Comm comm = _asm.dofs().comm();
+  if (!_eps) {
+    ST st;
+    KSP ksp;
+    PetscCall(EPSCreate(comm, &_eps));
+    PetscCall(EPSSetOptionsPrefix(_eps, "modal_"));
+    PetscCall(EPSSetProblemType(_eps, EPS_GHEP));
+    PetscCall(EPSSetDimensions(_eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
+    PetscCall(EPSSetTarget(_eps, 0.0));
+    PetscCall(EPSSetWhichEigenpairs(_eps, EPS_TARGET_MAGNITUDE));
+    PetscCall(EPSSetTolerances(_eps, 1e-12, 200));
+    PetscCall(EPSGetST(_eps, &st));
+    PetscCall(STSetType(st, STSINVERT));
+    PetscCall(STGetKSP(st, &ksp));
+    PetscCall(setDirectSolverDefaults(ksp, comm));
+    PetscCall(EPSSetOperators(_eps, _Kf, _Mf));
+    PetscCall(EPSSetFromOptions(_eps));
+  } else {
+    PetscCall(EPSSetOperators(_eps, _Kf, _Mf));
+  }
+  if (_opt.warmStart && !_previous.empty())
+    PetscCall(EPSSetInitialSpace(_eps, static_cast<PetscInt>(_previous.size()), _previous.data()));
+  PetscCall(EPSSolve(_eps));
 
   PetscInt nconv;
-  PetscCall(EPSGetConverged(eps, &nconv));
+  PetscCall(EPSGetConverged(_eps, &nconv));
   nconv = std::min<PetscInt>(nconv, nev);
-  Vec xr, kx, mx;
-  PetscCall(MatCreateVecs(Kf, &xr, &kx));
+  for (Vec& v : _previous) PetscCall(VecDestroy(&v));
+  _previous.clear();
+  Vec kx, mx;
+  PetscCall(MatCreateVecs(_Kf, nullptr, &kx));
   PetscCall(VecDuplicate(kx, &mx));
-  struct Pair { double omega; Vec shape; double res; };
+  struct Pair { double lambda; Vec x; double res; };
   std::vector<Pair> pairs;
-  const PetscInt* idx;
-  PetscInt nFree;
-  PetscCall(ISGetLocalSize(free, &nFree));
-  PetscCall(ISGetIndices(free, &idx));
   for (PetscInt k = 0; k < nconv; ++k) {
+    Vec xr;
+    PetscCall(MatCreateVecs(_Kf, &xr, nullptr));
     PetscScalar lambda;
-    PetscCall(EPSGetEigenpair(eps, k, &lambda, nullptr, xr, nullptr));
-    // residual check, independent of SLEPc's own estimate
-    PetscReal nk, nr;
-    PetscCall(MatMult(Kf, xr, kx));
-    PetscCall(MatMult(Mf, xr, mx));
+    PetscCall(EPSGetEigenpair(_eps, k, &lambda, nullptr, xr, nullptr));
+    PetscReal nk, nr;  // residual check, independent of SLEPc's own estimate
+    PetscCall(MatMult(_Kf, xr, kx));
+    PetscCall(MatMult(_Mf, xr, mx));
     PetscCall(VecNorm(kx, NORM_2, &nk));
     PetscCall(VecAXPY(kx, -lambda, mx));
     PetscCall(VecNorm(kx, NORM_2, &nr));
-    Vec full;
-    PetscCall(dofs.createVector(&full));
-    PetscCall(VecSet(full, 0.0));
-    const PetscScalar* a;
-    PetscCall(VecGetArrayRead(xr, &a));
-    PetscCall(VecSetValues(full, nFree, idx, a, INSERT_VALUES));
-    PetscCall(VecRestoreArrayRead(xr, &a));
-    PetscCall(VecAssemblyBegin(full));
-    PetscCall(VecAssemblyEnd(full));
-    pairs.push_back({std::sqrt(std::max(0.0, PetscRealPart(lambda))), full, nr / nk});
+    pairs.push_back({PetscRealPart(lambda), xr, nr / nk});
   }
-  PetscCall(ISRestoreIndices(free, &idx));
-  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.omega < b.omega; });
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.lambda < b.lambda; });
+  result->method = "eps";
   for (const Pair& p : pairs) {
-    result->omega.push_back(p.omega);
-    result->shapes.push_back(p.shape);
+    Vec full;
+    PetscCall(toFull(p.x, &full));
+    result->omega.push_back(std::sqrt(std::max(0.0, p.lambda)));
+    result->shapes.push_back(full);
     result->relativeResidual.push_back(p.res);
+    _previous.push_back(p.x);
   }
-  PetscCall(VecDestroy(&xr));
   PetscCall(VecDestroy(&kx));
   PetscCall(VecDestroy(&mx));
-  PetscCall(EPSDestroy(&eps));
-  PetscCall(ISDestroy(&free));
-  PetscCall(MatDestroy(&Kf));
-  PetscCall(MatDestroy(&Mf));
-  PetscCall(MatDestroy(&K));
-  PetscCall(MatDestroy(&M));
+  PetscFunctionReturn(0);
+}
+
+// Quadratic problem (lambda^2 M + lambda G + K_T) x = 0 by TOAR with shift-and-invert about 0.
+PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
+  PetscFunctionBeginUser;
+  MPI_Comm comm = _asm.dofs().comm();
+  Mat A[3] = {_Kf, _Gf, _Mf};
+  if (!_pep) {
+    ST st;
+    KSP ksp;
+    PetscCall(PEPCreate(comm, &_pep));
+    PetscCall(PEPSetOptionsPrefix(_pep, "modal_"));
+    PetscCall(PEPSetType(_pep, PEPTOAR));
+    // G = 0 (Coriolis off, for comparison with eps): TOAR with the gyroscopic type stalls (200
+    // iterations, one pair, measured); the general type converges
+    PetscCall(PEPSetProblemType(_pep, _opt.coriolis ? PEP_GYROSCOPIC : PEP_GENERAL));
+    // ncv: SLEPc's default (2 nev) needed 67 restarts with Coriolis and did not converge without it
+    // (pairs of equal magnitude); 4 count + 20 converges in one (measured, 2D cantilever, 5 modes)
+    PetscCall(PEPSetDimensions(_pep, 2 * _opt.count, 4 * _opt.count + 20, PETSC_DEFAULT));
+    PetscCall(PEPSetTarget(_pep, 0.0));
+    PetscCall(PEPSetWhichEigenpairs(_pep, PEP_TARGET_MAGNITUDE));
+    PetscCall(PEPSetTolerances(_pep, 1e-12, 200));
+    PetscCall(PEPGetST(_pep, &st));
+    PetscCall(STSetType(st, STSINVERT));
+    PetscCall(STGetKSP(st, &ksp));
+    PetscCall(setDirectSolverDefaults(ksp, comm));
+    PetscCall(PEPSetOperators(_pep, 3, A));
+    PetscCall(PEPSetFromOptions(_pep));
+  } else {
+    PetscCall(PEPSetOperators(_pep, 3, A));
+  }
+  PetscCall(PEPSolve(_pep));
+  PetscInt nconv;
+  PetscCall(PEPGetConverged(_pep, &nconv));
+  struct Pair { double omega; Vec xr, xi; double res; };
+  std::vector<Pair> pairs;
+  double maxRe = 0.0;
+  for (PetscInt k = 0; k < nconv; ++k) {
+    Vec xr, xi;
+    PetscCall(MatCreateVecs(_Kf, &xr, nullptr));
+    PetscCall(VecDuplicate(xr, &xi));
+    PetscScalar kr, ki;
+    PetscCall(PEPGetEigenpair(_pep, k, &kr, &ki, xr, xi));
+    const double mag = std::hypot(kr, ki);
+    if (mag > 0.0) maxRe = std::max(maxRe, std::fabs(kr) / mag);
+    if (ki <= 0.0) {  // keep one of each conjugate pair, lambda = i omega
+      PetscCall(VecDestroy(&xr));
+      PetscCall(VecDestroy(&xi));
+      continue;
+    }
+    PetscReal err;
+    PetscCall(PEPComputeError(_pep, k, PEP_ERROR_BACKWARD, &err));
+    PetscCall(alignPhase(xr, xi));
+    pairs.push_back({ki, xr, xi, err});
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.omega < b.omega; });
+  if (static_cast<int>(pairs.size()) > _opt.count) {
+    for (size_t k = _opt.count; k < pairs.size(); ++k) {
+      PetscCall(VecDestroy(&pairs[k].xr));
+      PetscCall(VecDestroy(&pairs[k].xi));
+    }
+    pairs.resize(_opt.count);
+  }
+  result->method = "pep";
+  result->maxRealPart = maxRe;
+  for (Pair& p : pairs) {
+    Vec fr, fi;
+    PetscCall(toFull(p.xr, &fr));
+    PetscCall(toFull(p.xi, &fi));
+    result->omega.push_back(p.omega);
+    result->shapes.push_back(fr);
+    result->shapesImag.push_back(fi);
+    result->relativeResidual.push_back(p.res);
+    PetscCall(VecDestroy(&p.xr));
+    PetscCall(VecDestroy(&p.xi));
+  }
+  PetscFunctionReturn(0);
+}
+
+// Projection on the first m undamped modes Phi: a dense 2m x 2m companion problem, solved
+// redundantly on every rank (the reduced matrices are global dot products).
+PetscErrorCode ModalSolver::solveProjected(ModalResult* result) {
+  PetscFunctionBeginUser;
+  ModalResult basis;
+  PetscCall(solveEps(_opt.projectionModes, &basis));
+  destroyModes(&basis);
+  const int m = static_cast<int>(_previous.size());
+  PetscCheck(m >= _opt.count, _asm.dofs().comm(), PETSC_ERR_NOT_CONVERGED,
+             "projected modal solve: only %d of %d basis modes converged", m, _opt.projectionModes);
+  Eigen::MatrixXd Kr(m, m), Mr(m, m), Gr(m, m);
+  Vec t;
+  PetscCall(VecDuplicate(_previous[0], &t));
+  std::vector<PetscScalar> dots(m);
+  for (auto [mat, red] : {std::pair<Mat, Eigen::MatrixXd*>{_Kf, &Kr}, {_Mf, &Mr}, {_Gf, &Gr}})
+    for (int j = 0; j < m; ++j) {
+      PetscCall(MatMult(mat, _previous[j], t));
+      PetscCall(VecMDot(t, m, _previous.data(), dots.data()));
+      for (int i = 0; i < m; ++i) (*red)(i, j) = PetscRealPart(dots[i]);
+    }
+  // companion form of lambda^2 Mr + lambda Gr + Kr: z = [y; lambda y]
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+  const Eigen::MatrixXd Minv = Mr.inverse();
+  C.topRightCorner(m, m).setIdentity();
+  C.bottomLeftCorner(m, m) = -Minv * Kr;
+  C.bottomRightCorner(m, m) = -Minv * Gr;
+  Eigen::EigenSolver<Eigen::MatrixXd> es(C);
+  struct Pair { double omega; std::complex<double> lambda; Eigen::VectorXcd y; };
+  std::vector<Pair> pairs;
+  double maxRe = 0.0;
+  for (int k = 0; k < 2 * m; ++k) {
+    const std::complex<double> lam = es.eigenvalues()(k);
+    if (std::abs(lam) > 0.0) maxRe = std::max(maxRe, std::fabs(lam.real()) / std::abs(lam));
+    if (lam.imag() > 0.0) pairs.push_back({lam.imag(), lam, es.eigenvectors().col(k).head(m)});
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.omega < b.omega; });
+  pairs.resize(std::min<size_t>(pairs.size(), _opt.count));
+  result->method = "projected";
+  result->maxRealPart = maxRe;
+  Vec kx, mx, gx;
+  PetscCall(VecDuplicate(t, &kx));
+  PetscCall(VecDuplicate(t, &mx));
+  PetscCall(VecDuplicate(t, &gx));
+  for (const Pair& p : pairs) {
+    Vec xr, xi;
+    PetscCall(VecDuplicate(t, &xr));
+    PetscCall(VecDuplicate(t, &xi));
+    PetscCall(VecSet(xr, 0.0));
+    PetscCall(VecSet(xi, 0.0));
+    std::vector<PetscScalar> re(m), im(m);
+    for (int i = 0; i < m; ++i) { re[i] = p.y(i).real(); im[i] = p.y(i).imag(); }
+    PetscCall(VecMAXPY(xr, m, re.data(), _previous.data()));
+    PetscCall(VecMAXPY(xi, m, im.data(), _previous.data()));
+    PetscCall(alignPhase(xr, xi));
+    // residual of the full quadratic problem for lambda = a + i b, x = xr + i xi (relative to ||K x||)
+    const double a = p.lambda.real(), b = p.lambda.imag(), l2r = a * a - b * b, l2i = 2 * a * b;
+    PetscReal nr2 = 0.0, nk2 = 0.0;
+    for (int part = 0; part < 2; ++part) {
+      Vec u = part == 0 ? xr : xi, w = part == 0 ? xi : xr;
+      const double sgn = part == 0 ? -1.0 : 1.0;  // real part: ... - l2i M xi - b G xi; imag: + l2i M xr + b G xr
+      PetscReal nk;
+      PetscCall(MatMult(_Kf, u, kx));
+      PetscCall(VecNorm(kx, NORM_2, &nk));
+      nk2 += nk * nk;
+      PetscCall(MatMult(_Mf, u, mx));
+      PetscCall(VecAXPY(kx, l2r, mx));
+      PetscCall(MatMult(_Gf, u, gx));
+      PetscCall(VecAXPY(kx, a, gx));
+      PetscCall(MatMult(_Mf, w, mx));
+      PetscCall(VecAXPY(kx, sgn * l2i, mx));
+      PetscCall(MatMult(_Gf, w, gx));
+      PetscCall(VecAXPY(kx, sgn * b, gx));
+      PetscReal nr;
+      PetscCall(VecNorm(kx, NORM_2, &nr));
+      nr2 += nr * nr;
+    }
+    Vec fr, fi;
+    PetscCall(toFull(xr, &fr));
+    PetscCall(toFull(xi, &fi));
+    result->omega.push_back(p.omega);
+    result->shapes.push_back(fr);
+    result->shapesImag.push_back(fi);
+    result->relativeResidual.push_back(std::sqrt(nr2 / nk2));
+    PetscCall(VecDestroy(&xr));
+    PetscCall(VecDestroy(&xi));
+  }
+  PetscCall(VecDestroy(&kx));
+  PetscCall(VecDestroy(&mx));
+  PetscCall(VecDestroy(&gx));
+  PetscCall(VecDestroy(&t));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode solveModes(assembly::Assembler& assembler, Vec X, int nev, ModalResult* result) {
+  PetscFunctionBeginUser;
+  ModalOptions opt;
+  opt.count = nev;
+  ModalSolver solver(assembler, opt);
+  PetscCall(solver.solve(X, result));
   PetscFunctionReturn(0);
 }
 
 void destroyModes(ModalResult* result) {
   for (Vec& v : result->shapes) VecDestroy(&v);
+  for (Vec& v : result->shapesImag) VecDestroy(&v);
   result->shapes.clear();
+  result->shapesImag.clear();
   result->omega.clear();
   result->relativeResidual.clear();
 }

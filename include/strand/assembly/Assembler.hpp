@@ -34,6 +34,10 @@ public:
   PetscErrorCode staticJacobian(Vec X, PetscReal loadFactor, Mat J);
   // Consistent mass matrix with point masses; supported rows and columns are zero.
   PetscErrorCode massMatrix(Mat M);
+  // Coriolis matrix G = 2 Omega int rho A N^T [e]x N dx of the rotating frame (skew-symmetric);
+  // supported rows and columns are zero. The static residual and Jacobian already contain the
+  // centrifugal load and its softening -Omega^2 M_P (Model::rotation()).
+  PetscErrorCode gyroscopicMatrix(Mat G);
   // Strain energy (all ranks get the sum).
   PetscErrorCode strainEnergy(Vec X, PetscReal* U);
   // Index set of the free (unsupported) DOFs owned by this rank, global numbering.

@@ -38,6 +38,14 @@ struct ElementRef {
   std::array<int, 4> blocks;
 };
 
+// Scales of the first body for dimensionless input and output (seed 003): length L, rho A, E I,
+// E A; T* = sqrt(rho A L^4 / (E I)) turns omega into gamma = omega T* and omega_bar = omega T*.
+struct ReferenceScales {
+  double length = 1.0, rhoA = 1.0, EI = 1.0, EA = 1.0;
+  double time() const;
+  double slenderness() const;  // mu = sqrt(A L^2 / I) = sqrt(EA L^2 / EI)
+};
+
 struct NodalMomentLoad {
   int slopeBlock;
   Vec3 moment;
@@ -60,6 +68,10 @@ public:
   const std::vector<double>& nodalForces() const { return _nodalForce; } // constant nodal forces per DOF
   const std::vector<NodalMomentLoad>& nodalMoments() const { return _moments; }
   const Vec3& gravity() const { return _gravity; }  // also acts on point masses
+  // Rotating frame (absent: omega 0). The angular speed may be changed between solves (sweeps).
+  const RotationDesc& rotation() const { return _rotation; }
+  void setAngularSpeed(double omega) { _rotation.omega = omega; }
+  const ReferenceScales& scales() const { return _scales; }
 
 private:
   int _dim = 3, _numBlocks = 0, _gaussPoints = 5;
@@ -69,6 +81,8 @@ private:
   std::vector<char> _fixed;
   std::vector<NodalMomentLoad> _moments;
   Vec3 _gravity{};
+  RotationDesc _rotation;
+  ReferenceScales _scales;
 };
 
 }  // namespace strand::model

@@ -40,8 +40,8 @@ struct GeometryDesc {
 };
 
 struct PointMassDesc {
-  double at = 0.0;    // arc length from the body's first node [m]
-  double mass = 0.0;  // [kg]
+  double at = 0.0;    // arc length from the body's first node [m] (scene: `at`, or `location` = at / L)
+  double mass = 0.0;  // [kg] (scene: `mass`, or `mass_ratio` = mass / (rho A L))
   SourceMark mark;
 };
 
@@ -101,8 +101,33 @@ struct StaticDesc {
   int loadSteps = 1;  // equal load increments for large deflection
 };
 
+// Steady rotation of the frame in which the scene is described (rotating beams, seed 003): the
+// bodies feel the centrifugal load Omega^2 rho A P (r - c) (P projects onto the plane normal to
+// the axis, c a point on the axis) and, in modal analysis, optionally the Coriolis coupling.
+struct RotationDesc {
+  bool present = false;
+  double omega = 0.0;     // angular speed [rad/s] (the scene may give gamma; the reader converts)
+  Vec3 axis{0, 0, 1};     // unit vector; 2D: z
+  Vec3 center{};          // a point on the axis [m]
+  SourceMark mark;
+};
+
+enum class ModalMethod { Auto, Eps, Pep, Projected };
 struct ModesDesc {
-  int count = 6;  // number of eigenpairs
+  int count = 6;          // number of eigenpairs
+  bool coriolis = false;  // include the gyroscopic matrix G (quadratic eigenproblem)
+  ModalMethod method = ModalMethod::Auto;  // auto: eps without Coriolis; pep up to 5000 DOFs, else projected
+  int projectionModes = 0;                 // projected: basis size (0: max(2 count, count + 10))
+};
+
+enum class SweepParameter { Gamma, Omega, MassRatio, MassLocation };
+struct SweepDesc {
+  bool present = false;
+  SweepParameter parameter = SweepParameter::Gamma;
+  double from = 0.0, to = 0.0;
+  int points = 2;
+  int mass = 0;  // point mass of the first body that mass_ratio / mass_location move
+  SourceMark mark;
 };
 
 struct DiscretizationDesc {
@@ -125,6 +150,8 @@ struct SceneDescription {
   LoadsDesc loads;
   StaticDesc statics;
   ModesDesc modes;
+  RotationDesc rotation;
+  SweepDesc sweep;
   DiscretizationDesc discretization;
   OutputDesc output;
 };

@@ -1,23 +1,74 @@
-// Natural frequencies about a static state with SLEPc (options prefix "modal_").
+// Natural frequencies about a static (or steady rotating) state with SLEPc (options prefix "modal_").
 //
-// Generalized Hermitian problem K_T phi = omega^2 M phi on the free DOFs (supported DOFs removed
-// with MatCreateSubMatrix), shift-and-invert about target 0 (design section 4).
+// Linearized equations of motion in the (rotating) frame (design section 4; seed 003 Eq. 74):
+//   M x'' + G x' + K_T x = 0,   K_T = K(u*) - Omega^2 M_P  (the Jacobian of the static residual),
+// on the free DOFs (supports removed with MatCreateSubMatrix). Methods:
+//   eps        generalized Hermitian K_T phi = omega^2 M phi, shift-and-invert about 0 (G ignored);
+//   pep        quadratic (lambda^2 M + lambda G + K_T) x = 0 with TOAR, shift-and-invert about 0;
+//              lambda = +- i omega for a stable gyroscopic system;
+//   projected  the same quadratic problem on the span of the first m eps modes Phi:
+//              (lambda^2 Phi^T M Phi + lambda Phi^T G Phi + Phi^T K_T Phi) y = 0, solved dense
+//              (design section 4: TOAR loses accuracy on fine meshes).
+// One ModalSolver keeps its matrices and solver objects between calls, so a sweep reuses the
+// symbolic factorization and warm-starts the eigensolver with the previous eigenvectors.
 #pragma once
 #include <slepceps.h>
+#include <slepcpep.h>
 
+#include <string>
 #include <vector>
 
 #include "strand/assembly/Assembler.hpp"
+#include "strand/model/SceneDescription.hpp"
 
 namespace strand::solvers {
 
 struct ModalResult {
   std::vector<double> omega;  // angular frequencies [rad/s], ascending
   std::vector<Vec> shapes;    // full-length mode shapes (zero at supports), caller destroys
-  std::vector<double> relativeResidual;  // ||K phi - omega^2 M phi|| / ||K phi||
+  std::vector<Vec> shapesImag;  // imaginary parts (quadratic problem with Coriolis), else empty
+  std::vector<double> relativeResidual;  // eps: ||K phi - omega^2 M phi|| / ||K phi||; pep: backward error
+  double maxRealPart = 0.0;   // quadratic problems: max |Re lambda| / |lambda| (0 for a gyroscopic system)
+  std::string method;         // "eps", "pep" or "projected"
 };
 
-// Tangent stiffness at state X (loadFactor 1), consistent mass; nev lowest modes.
+struct ModalOptions {
+  int count = 6;
+  bool coriolis = false;
+  model::ModalMethod method = model::ModalMethod::Auto;
+  int projectionModes = 0;  // 0: max(2 count, count + 10)
+  bool warmStart = true;
+};
+
+class ModalSolver {
+public:
+  ModalSolver(assembly::Assembler& assembler, const ModalOptions& options);
+  ~ModalSolver();
+  ModalSolver(const ModalSolver&) = delete;
+  ModalSolver& operator=(const ModalSolver&) = delete;
+
+  // Modes about state X (the Jacobian at load factor 1 and the model's current angular speed).
+  PetscErrorCode solve(Vec X, ModalResult* result);
+  model::ModalMethod method() const { return _method; }
+
+private:
+  PetscErrorCode assemble(Vec X);
+  PetscErrorCode solveEps(int nev, ModalResult* result);
+  PetscErrorCode solvePep(ModalResult* result);
+  PetscErrorCode solveProjected(ModalResult* result);
+  PetscErrorCode toFull(Vec freeVec, Vec* full);
+
+  assembly::Assembler& _asm;
+  ModalOptions _opt;
+  model::ModalMethod _method;
+  Mat _K = nullptr, _M = nullptr, _G = nullptr, _Kf = nullptr, _Mf = nullptr, _Gf = nullptr;
+  IS _free = nullptr;
+  EPS _eps = nullptr;
+  PEP _pep = nullptr;
+  std::vector<Vec> _previous;  // eigenvectors of the last solve (free DOFs), for warm starts
+};
+
+// One-shot helper: eps modes about X.
 PetscErrorCode solveModes(assembly::Assembler& assembler, Vec X, int nev, ModalResult* result);
 void destroyModes(ModalResult* result);
 

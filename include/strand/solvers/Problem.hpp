@@ -17,6 +17,8 @@ public:
   const model::Model& model() const { return _model; }
   const model::DofMap& dofs() const { return _dofs; }
   assembly::Assembler& assembler() { return _asm; }
+  // Angular speed of the rotating frame for the next solves (sweeps).
+  void setAngularSpeed(double omega) { _model.setAngularSpeed(omega); }
 
 private:
   model::SceneDescription _scene;
