@@ -37,7 +37,7 @@ struct ModalOptions {
   bool coriolis = false;
   model::ModalMethod method = model::ModalMethod::Auto;
   int projectionModes = 0;  // 0: max(2 count, count + 10)
-  bool warmStart = true;
+  bool warmStart = false;
 };
 
 class ModalSolver {
