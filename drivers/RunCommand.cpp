@@ -36,7 +36,8 @@ std::string outputPath(const model::SceneDescription& scene) {
 
 bool hasLoads(const model::SceneDescription& s) {
   auto nz = [](const model::Vec3& v) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; };
-  return nz(s.loads.gravity) || !s.loads.nodal.empty() || !s.loads.distributed.empty();
+  return nz(s.loads.gravity) || !s.loads.nodal.empty() || !s.loads.distributed.empty() ||
+         (s.rotation.present && s.rotation.omega != 0.0);  // the centrifugal load of a rotating frame
 }
 
 std::string fmt(const char* f, double a) {
@@ -124,7 +125,16 @@ private:
 
   void modes(Vec X) {
     solvers::ModalResult r;
-    PetscCallAbort(_comm, solvers::solveModes(_problem.assembler(), X, _scene.modes.count, &r));
+    solvers::ModalOptions opt;
+    opt.count = _scene.modes.count;
+    opt.coriolis = _scene.modes.coriolis;
+    opt.method = _scene.modes.method;
+    opt.projectionModes = _scene.modes.projectionModes;
+    {
+      solvers::ModalSolver solver(_problem.assembler(), opt);
+      PetscCallAbort(_comm, solver.solve(X, &r));
+    }
+    const double T = _problem.model().scales().time();
     std::vector<double> hz;
     std::vector<std::vector<io::BodyFrame>> shapes;
     // mode shapes are written as the static state plus a scaled mode (scale: 10 % of the longest body)
@@ -142,7 +152,8 @@ private:
       shapes.push_back(_rank == 0 ? io::makeFrames(_problem.model(), q, _scene.output.samplesPerElement)
                                   : std::vector<io::BodyFrame>{});
       say("mode " + std::to_string(k + 1) + ": " + fmt("%.8g Hz", hz.back()) + "  (omega " +
-          fmt("%.8g rad/s", r.omega[k]) + ", residual " + fmt("%.1e", r.relativeResidual[k]) + ")");
+          fmt("%.8g rad/s", r.omega[k]) + ", omega_bar " + fmt("%.8g", r.omega[k] * T) + ", residual " +
+          fmt("%.1e", r.relativeResidual[k]) + ")");
     }
     _writer->writeModes(hz, shapes);
     VecDestroy(&Y);

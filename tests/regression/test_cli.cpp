@@ -113,3 +113,15 @@ TEST(Cli, DefaultSceneRegression) {
   }
   fs::remove_all(dir);
 }
+
+// `strand modes` on the rotating-beam scene: steady state, then modes with omega_bar printed.
+// The flapwise values round to Wright et al. (1982) at gamma = 6: 7.360, 26.809, 66.684.
+TEST(Cli, RotatingBeamModesScene) {
+  const fs::path dir = scratchDir("rotating");
+  const fs::path out = dir / "rotating.h5";
+  auto r = runCommand(strandBinary() + " modes " + sourceDir() + "/meshes/rotating-beam-modes.yaml -o " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* w : {"omega_bar 7.360", "omega_bar 26.809", "omega_bar 66.684"})
+    EXPECT_NE(r.output.find(w), std::string::npos) << w << "\n" << r.output;
+  fs::remove_all(dir);
+}
