@@ -125,13 +125,8 @@ private:
 
   void modes(Vec X) {
     solvers::ModalResult r;
-    solvers::ModalOptions opt;
-    opt.count = _scene.modes.count;
-    opt.coriolis = _scene.modes.coriolis;
-    opt.method = _scene.modes.method;
-    opt.projectionModes = _scene.modes.projectionModes;
     {
-      solvers::ModalSolver solver(_problem.assembler(), opt);
+      solvers::ModalSolver solver(_problem.assembler(), solvers::modalOptions(_scene.modes));
       PetscCallAbort(_comm, solver.solve(X, &r));
     }
     const double T = _problem.model().scales().time();

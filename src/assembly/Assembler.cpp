@@ -60,6 +60,7 @@ public:
         for (int c = 0; c < 4; ++c) sm[a * 4 + c] = Me[(a * D) * N + c * D];
       _slotMass.push_back(sm);
     }
+    for (int i = 0; i < D * D; ++i) _identity[i] = (i % (D + 1) == 0) ? 1.0 : 0.0;
     const model::Vec3& e = m.rotation().axis;
     if constexpr (D == 2) {
       const double P[4] = {1, 0, 0, 1}, S[4] = {0, -1, 1, 0};  // rotation about z: in-plane
@@ -180,40 +181,15 @@ public:
     PetscFunctionReturn(0);
   }
 
+  // Consistent mass with point masses: blocks m_ab I_D.
   PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const override {
-    PetscFunctionBeginUser;
-    const auto& els = _model.elements();
-    const auto& local = _dofs.localElements();
-    double Me[N * N];
-    for (size_t k = 0; k < local.size(); ++k) {
-      const model::ElementRef& er = els[local[k]];
-      const model::Body& b = _model.bodies()[er.body];
-      const auto geo = geometry(b, er.index);
-      E::mass(b.section, geo, _massTab, Me);
-      for (const model::PointMass& pm : b.pointMasses)
-        if (pm.element == er.index) E::addPointMass(geo, pm.mass, pm.eta, Me);
-      maskFixed(static_cast<int>(k), fixed, Me);
-      PetscCall(MatSetValuesBlocked(M, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], Me, ADD_VALUES));
-    }
-    PetscFunctionReturn(0);
+    return assembleMassBlocks(M, 1.0, _identity, fixed);
   }
 
   // Coriolis (gyroscopic) matrix of the rotating frame, G = 2 Omega int rho A N^T [e]x N dx (plus
   // point masses): the Coriolis force 2 m Omega e x v on the left-hand side; G is skew-symmetric.
   PetscErrorCode gyroscopic(Mat G, const std::vector<char>& fixed) const override {
-    PetscFunctionBeginUser;
-    const auto& els = _model.elements();
-    const auto& local = _dofs.localElements();
-    double Ge[N * N];
-    for (size_t k = 0; k < local.size(); ++k) {
-      const model::ElementRef& er = els[local[k]];
-      const model::Body& b = _model.bodies()[er.body];
-      for (double& g : Ge) g = 0.0;
-      addMassBlocks(er, b, 2.0 * _model.rotation().omega, _skew, Ge);
-      maskFixed(static_cast<int>(k), fixed, Ge);
-      PetscCall(MatSetValuesBlocked(G, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], Ge, ADD_VALUES));
-    }
-    PetscFunctionReturn(0);
+    return assembleMassBlocks(G, 2.0 * _model.rotation().omega, _skew, fixed);
   }
 
   double strainEnergy(const double* x) const override {
@@ -242,6 +218,22 @@ private:
       for (int a = 0; a < 4; ++a)
         for (int c = 0; c < 4; ++c) m[a][c] += pm.mass * sl.N[a] * sl.N[c];
     }
+  }
+
+  // Assemble s m (x) X over the local elements (supported rows and columns zero).
+  PetscErrorCode assembleMassBlocks(Mat A, double s, const double* X, const std::vector<char>& fixed) const {
+    PetscFunctionBeginUser;
+    const auto& els = _model.elements();
+    const auto& local = _dofs.localElements();
+    double Ae[N * N];
+    for (size_t k = 0; k < local.size(); ++k) {
+      const model::ElementRef& er = els[local[k]];
+      for (double& a : Ae) a = 0.0;
+      addMassBlocks(er, _model.bodies()[er.body], s, X, Ae);
+      maskFixed(static_cast<int>(k), fixed, Ae);
+      PetscCall(MatSetValuesBlocked(A, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], Ae, ADD_VALUES));
+    }
+    PetscFunctionReturn(0);
   }
 
   // A += s m (x) X for a D x D matrix X (row-major): blocks s m_ab X.
@@ -299,6 +291,7 @@ private:
   std::vector<std::array<double, N>> _bodyLoad;
   std::vector<std::vector<typename E::Slots>> _slots;  // per body, at the Gauss points of _tab
   std::vector<std::array<double, 16>> _slotMass;       // per body: m_ab of one element (no point masses)
+  double _identity[D * D];
   double _projector[D * D], _skew[D * D];              // P = I - e e^T and [e]x of the rotation axis e
   std::vector<OwnedMoment> _moments;
   struct PointMassLoad {

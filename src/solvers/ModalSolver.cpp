@@ -29,7 +29,25 @@ PetscErrorCode alignPhase(Vec xr, Vec xi) {
   PetscCall(VecDestroy(&t));
   PetscFunctionReturn(0);
 }
+// Shift-and-invert about the target with the project's direct solver.
+PetscErrorCode useShiftInvert(ST st, MPI_Comm comm) {
+  PetscFunctionBeginUser;
+  KSP ksp;
+  PetscCall(STSetType(st, STSINVERT));
+  PetscCall(STGetKSP(st, &ksp));
+  PetscCall(setDirectSolverDefaults(ksp, comm));
+  PetscFunctionReturn(0);
+}
 }  // namespace
+
+ModalOptions modalOptions(const model::ModesDesc& modes) {
+  ModalOptions opt;
+  opt.count = modes.count;
+  opt.coriolis = modes.coriolis;
+  opt.method = modes.method;
+  opt.projectionModes = modes.projectionModes;
+  return opt;
+}
 
 ModalSolver::ModalSolver(assembly::Assembler& assembler, const ModalOptions& options)
     : _asm(assembler), _opt(options), _method(options.method) {
@@ -111,7 +129,6 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
   MPI_Comm comm = _asm.dofs().comm();
   if (!_eps) {
     ST st;
-    KSP ksp;
     PetscCall(EPSCreate(comm, &_eps));
     PetscCall(EPSSetOptionsPrefix(_eps, "modal_"));
     PetscCall(EPSSetProblemType(_eps, EPS_GHEP));
@@ -120,9 +137,7 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
     PetscCall(EPSSetWhichEigenpairs(_eps, EPS_TARGET_MAGNITUDE));
     PetscCall(EPSSetTolerances(_eps, 1e-12, 200));
     PetscCall(EPSGetST(_eps, &st));
-    PetscCall(STSetType(st, STSINVERT));
-    PetscCall(STGetKSP(st, &ksp));
-    PetscCall(setDirectSolverDefaults(ksp, comm));
+    PetscCall(useShiftInvert(st, comm));
     PetscCall(EPSSetOperators(_eps, _Kf, _Mf));
     PetscCall(EPSSetFromOptions(_eps));
   } else {
@@ -177,7 +192,6 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
   Mat A[3] = {_Kf, _Gf, _Mf};
   if (!_pep) {
     ST st;
-    KSP ksp;
     PetscCall(PEPCreate(comm, &_pep));
     PetscCall(PEPSetOptionsPrefix(_pep, "modal_"));
     PetscCall(PEPSetType(_pep, PEPTOAR));
@@ -191,9 +205,7 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
     PetscCall(PEPSetWhichEigenpairs(_pep, PEP_TARGET_MAGNITUDE));
     PetscCall(PEPSetTolerances(_pep, 1e-12, 200));
     PetscCall(PEPGetST(_pep, &st));
-    PetscCall(STSetType(st, STSINVERT));
-    PetscCall(STGetKSP(st, &ksp));
-    PetscCall(setDirectSolverDefaults(ksp, comm));
+    PetscCall(useShiftInvert(st, comm));
     PetscCall(PEPSetOperators(_pep, 3, A));
     PetscCall(PEPSetFromOptions(_pep));
   } else {

@@ -54,7 +54,7 @@ double mac(const StoredShape& x, const StoredShape& y) {
 
 // Vibration nodes of a mode shape on body 0: sign changes of its dominant displacement component
 // between nodes 1..N (node 0 is the clamp), linearly interpolated, as x / L.
-std::vector<double> vibrationNodes(const model::Model& m, const std::vector<double>& disp, int* component) {
+std::vector<double> vibrationNodes(const model::Model& m, const std::vector<double>& disp) {
   const model::Body& b = m.bodies()[0];
   const int d = m.dim();
   double e[3] = {0, 0, 0};
@@ -63,7 +63,6 @@ std::vector<double> vibrationNodes(const model::Model& m, const std::vector<doub
   int c = 0;
   for (int i = 1; i < d; ++i)
     if (e[i] > e[c]) c = i;
-  *component = c;
   double amax = 0.0;
   for (int pb : b.posBlock) amax = std::max(amax, std::fabs(disp[pb * d + c]));
   std::vector<double> nodes;
@@ -76,6 +75,14 @@ std::vector<double> vibrationNodes(const model::Model& m, const std::vector<doub
   return nodes;
 }
 
+// Position displacements of body 0's nodes, node by node (dim values each).
+std::vector<double> bodyDisplacements(const model::Model& m, const std::vector<double>& disp) {
+  std::vector<double> out;
+  for (int pb : m.bodies()[0].posBlock)
+    for (int c = 0; c < m.dim(); ++c) out.push_back(disp[pb * m.dim() + c]);
+  return out;
+}
+
 }  // namespace
 
 PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, SweepResult* out,
@@ -85,11 +92,8 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
   const bool speedSweep = sw.parameter == model::SweepParameter::Gamma || sw.parameter == model::SweepParameter::Omega;
   const double t0 = MPI_Wtime();
   out->parameterName = parameterName(sw.parameter);
-  ModalOptions opt;
-  opt.count = scene.modes.count;
-  opt.coriolis = scene.modes.coriolis;
-  opt.method = scene.modes.method;
-  opt.projectionModes = scene.modes.projectionModes;
+  const ModalOptions opt = modalOptions(scene.modes);
+  const double length = model::Model(scene).bodies()[0].length;  // of the body carrying the swept mass
 
   std::unique_ptr<Problem> problem;
   std::unique_ptr<ModalSolver> modal;
@@ -103,10 +107,8 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
       if (!speedSweep) {
         model::PointMassDesc& pm = sc.bodies[0].pointMasses[sw.mass];
         const model::BodyDesc& b = sc.bodies[0];
-        Problem probe(PETSC_COMM_SELF, sc);  // the body length (geometry kinds differ)
-        const double L = probe.model().bodies()[0].length;
-        if (sw.parameter == model::SweepParameter::MassRatio) pm.mass = p * b.rho * b.A * L;
-        else pm.at = p * L;
+        if (sw.parameter == model::SweepParameter::MassRatio) pm.mass = p * b.rho * b.A * length;
+        else pm.at = p * length;
       }
       std::unique_ptr<Problem> next = std::make_unique<Problem>(comm, sc);
       Vec Xn;
@@ -154,16 +156,16 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
     const auto& q0 = problem->model().initialCoordinates();
     for (size_t k = 0; k < r.omega.size(); ++k) {
       PetscCall(storeShape(Mmac, r.shapes[k], r.shapesImag.empty() ? nullptr : r.shapesImag[k], &here[k]));
-      std::vector<double> q;
+      std::vector<double> q;  // q0 + shape, rank 0 only
       PetscCall(problem->assembler().gatherToRoot(r.shapes[k], q));
-      std::vector<double> disp(q.size()), body;
-      for (size_t j = 0; j < q.size(); ++j) disp[j] = q[j] - q0[j];
-      int component = 0;
-      nodes.push_back(q.empty() ? std::vector<double>{} : vibrationNodes(problem->model(), disp, &component));
-      const model::Body& b0 = problem->model().bodies()[0];
-      for (int pb : b0.posBlock)
-        for (int c = 0; c < problem->model().dim() && !q.empty(); ++c) body.push_back(disp[pb * problem->model().dim() + c]);
-      shapes.push_back(body);
+      if (q.empty()) {
+        nodes.emplace_back();
+        shapes.emplace_back();
+        continue;
+      }
+      for (size_t j = 0; j < q.size(); ++j) q[j] -= q0[j];
+      nodes.push_back(vibrationNodes(problem->model(), q));
+      shapes.push_back(bodyDisplacements(problem->model(), q));
     }
     out->nodes.push_back(nodes);
     out->shapes.push_back(shapes);

@@ -37,8 +37,12 @@ struct ModalOptions {
   bool coriolis = false;
   model::ModalMethod method = model::ModalMethod::Auto;
   int projectionModes = 0;  // 0: max(2 count, count + 10)
+  // previous eigenvectors as the initial space: off, it made EPS skip an eigenvalue (docs/architecture.md)
   bool warmStart = false;
 };
+
+// The options a scene's `modes` section asks for.
+ModalOptions modalOptions(const model::ModesDesc& modes);
 
 class ModalSolver {
 public:
