@@ -23,6 +23,8 @@
 namespace strand::drivers {
 namespace {
 
+}  // namespace
+
 const char* kVersion = "0.1.0";
 
 std::string outputPath(const model::SceneDescription& scene) {
@@ -33,6 +35,8 @@ std::string outputPath(const model::SceneDescription& scene) {
   if (!scene.output.file.empty()) return scene.output.file;
   return std::filesystem::path(scene.file).stem().string() + ".h5";
 }
+
+namespace {
 
 bool hasLoads(const model::SceneDescription& s) {
   auto nz = [](const model::Vec3& v) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; };

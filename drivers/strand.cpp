@@ -2,14 +2,21 @@
 //
 //   strand run SCENE [-o FILE] [PETSc options]    solve the scene's analysis, write HDF5 + XDMF
 //   strand modes SCENE [-o FILE] [PETSc options]  natural frequencies (SLEPc) about the static state
+//   strand sweep SCENE [-o FILE] [PETSc options]  modes along the scene's sweep, veering detection
+//   strand plot KIND FILE [-o PNG]                charts (runs drivers/plot/strand_plot.py)
 //   strand help [COMMAND]
 //
 // Exit codes: 0 success, 1 internal error, 2 bad input (scene or options), 3 solve diverged.
 #include <slepcsys.h>
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "Commands.hpp"
 #include "strand/core/Error.hpp"
@@ -24,6 +31,9 @@ const char* kUsage =
     "Commands:\n"
     "  run SCENE     solve the analysis the scene asks for (analysis: static | modes)\n"
     "  modes SCENE   natural frequencies about the scene's static state (SLEPc)\n"
+    "  sweep SCENE   modes along the scene's sweep (gamma, omega, mass ratio or location):\n"
+    "                tracked loci, veering / crossing, mode shift; HDF5 + CSV\n"
+    "  plot KIND ... charts from output files (campbell, lines); `strand plot --help`\n"
     "  help [CMD]    this text, or the help of one command\n"
     "\n"
     "Exit codes: 0 success, 1 internal error, 2 bad input, 3 solve diverged.\n"
@@ -51,7 +61,41 @@ const char* kModesHelp =
     "unsupported DOFs, shift-and-invert about 0. The number of modes is modes.count in the scene.\n"
     "Frequencies go to stdout and to /modes in the output file.\n";
 
+const char* kSweepHelp =
+    "strand sweep SCENE [-o FILE] [PETSc options]\n"
+    "\n"
+    "Computes the modes at every point of the scene's `sweep` section: the steady state in the\n"
+    "rotating frame (warm-started from the previous point), then the linearized modes (the scene's\n"
+    "modes.method and modes.coriolis; prefix -modal_). Modes are tracked from point to point by\n"
+    "the mass-weighted MAC; close approaches of neighbouring loci are reported as veering (the shapes\n"
+    "mix and exchange: mode shift) or crossing (the shapes stay pure).\n"
+    "Writes FILE (HDF5, group /sweep), <stem>.csv (one row per point) and <stem>_events.csv.\n"
+    "Chart: strand plot campbell FILE -o campbell.png\n"
+    "Dimensionless outputs: gamma = Omega sqrt(rho A L^4/EI), omega_bar = omega sqrt(rho A L^4/EI)\n"
+    "of the first body.\n";
+
 bool isHelp(const char* a) { return !std::strcmp(a, "-h") || !std::strcmp(a, "--help") || !std::strcmp(a, "-help"); }
+
+const char* helpOf(const std::string& cmd) {
+  return cmd == "run" ? kRunHelp : cmd == "modes" ? kModesHelp : cmd == "sweep" ? kSweepHelp : nullptr;
+}
+
+// `strand plot ...` hands its arguments to the plotting script (Python 3 with matplotlib and h5py).
+// STRAND_PLOT_SCRIPT overrides the script's location (default: the source tree's copy).
+int runPlot(int argc, char** argv) {
+  const char* env = std::getenv("STRAND_PLOT_SCRIPT");
+  std::string script = env && *env ? env : STRAND_PLOT_SCRIPT;
+  if (access(script.c_str(), R_OK) != 0) {
+    std::fprintf(stderr, "strand: plot script '%s' not found (set STRAND_PLOT_SCRIPT)\n", script.c_str());
+    return strand::kExitInternal;
+  }
+  std::vector<char*> args{(char*)"/usr/bin/python3", script.data()};
+  for (int i = 2; i < argc; ++i) args.push_back(argv[i]);
+  args.push_back(nullptr);
+  execv("/usr/bin/python3", args.data());  // Debian's python3 has matplotlib and h5py
+  std::fprintf(stderr, "strand: cannot run /usr/bin/python3 for `strand plot`: %s\n", std::strerror(errno));
+  return strand::kExitInternal;
+}
 
 }  // namespace
 
@@ -62,10 +106,12 @@ int main(int argc, char** argv) {
     return argc < 2 ? strand::kExitBadInput : strand::kExitSuccess;
   }
   const std::string cmd = argv[1];
-  const char* cmdHelp = cmd == "run" ? kRunHelp : cmd == "modes" ? kModesHelp : nullptr;
+  if (cmd == "plot") return runPlot(argc, argv);
+  const char* cmdHelp = helpOf(cmd);
   if (cmd == "help") {
-    const char* which = argc > 2 ? argv[2] : "";
-    std::fputs(!std::strcmp(which, "run") ? kRunHelp : !std::strcmp(which, "modes") ? kModesHelp : kUsage, stdout);
+    const char* which = argc > 2 ? helpOf(argv[2]) : nullptr;
+    if (argc > 2 && !std::strcmp(argv[2], "plot")) return runPlot(3, std::vector<char*>{argv[0], argv[2], (char*)"--help"}.data());
+    std::fputs(which ? which : kUsage, stdout);
     return strand::kExitSuccess;
   }
   if (!cmdHelp) {
@@ -79,8 +125,9 @@ int main(int argc, char** argv) {
   const char* scene = argv[2];
   // PETSc sees every argument; positional ones are ignored by its options parser.
   if (SlepcInitialize(&argc, &argv, nullptr, nullptr)) return strand::kExitInternal;
-  const int code = strand::drivers::runScene(scene, cmd == "modes" ? strand::drivers::RunMode::ForceModes
-                                                                    : strand::drivers::RunMode::SceneAnalysis);
+  const int code = cmd == "sweep" ? strand::drivers::runSweepScene(scene)
+                   : strand::drivers::runScene(scene, cmd == "modes" ? strand::drivers::RunMode::ForceModes
+                                                                     : strand::drivers::RunMode::SceneAnalysis);
   SlepcFinalize();
   return code;
 }

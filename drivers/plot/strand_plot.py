@@ -4,6 +4,13 @@
   strand_plot.py lines FILE.jsonl -x KEY -y KEY [--group KEY[,KEY]] [--where KEY=VALUE ...]
                  [--slope P] [--loglog] [--title T] [--xlabel L] [--ylabel L] -o OUT.png
 
+  strand_plot.py campbell SWEEP.h5 [--modes N] [--tracked] [--title T] [-o OUT.png]
+  strand_plot.py nodes SWEEP.h5 [--modes N] [-o OUT.png]
+
+`campbell` draws the sorted frequency loci omega_bar(parameter) of a `strand sweep` file and marks
+each detected veering (circle, gap and mode shift in the legend) and crossing (cross); --tracked
+colours the loci by tracked shape (MAC) instead of by sorted order, which shows the mode shift.
+`nodes` draws the vibration nodes x/L of each mode shape against the parameter.
 `lines` draws one line per distinct value of the group keys, from the records that match every
 --where filter; --slope P adds a dashed reference line of slope P (a convergence rate) on a log-log
 chart. Uses Debian's matplotlib (run with /usr/bin/python3).
@@ -83,6 +90,107 @@ def cmd_lines(a):
     print(a.output)
 
 
+PARAMETER_LABELS = {"gamma": r"$\gamma = \Omega\sqrt{\rho A L^4/EI}$", "omega": r"$\Omega$ (rad/s)",
+                    "mass_ratio": r"mass ratio $\alpha$", "mass_location": r"mass location $\beta = x/L$"}
+
+
+def read_sweep(path):
+    import h5py
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        sys.exit(f"cannot open sweep file '{path}': {e}")
+    with f:
+        if "sweep" not in f:
+            sys.exit(f"'{path}' has no /sweep group: is it the output of `strand sweep`?")
+        g = f["sweep"]
+        d = {k: g[k][()] for k in ("parameter", "omega_bar", "label", "loci_omega_bar", "node_count", "nodes")}
+        d["events"] = {k: g["events"][k][()] for k in g["events"]}
+        d["name"] = f.attrs["parameter"]
+        d["name"] = d["name"].decode() if isinstance(d["name"], bytes) else str(d["name"])
+        d["status"] = f.attrs["status"]
+    return d
+
+
+def default_output(a, suffix):
+    import os
+    return a.output or os.path.splitext(a.file)[0] + suffix
+
+
+def cmd_campbell(a):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    d = read_sweep(a.file)
+    p, w = d["parameter"], d["omega_bar"]
+    n = w.shape[1] if w.ndim == 2 else 0
+    if len(p) == 0 or n == 0:
+        sys.exit(f"'{a.file}' holds no sweep points")
+    n = min(n, a.modes) if a.modes else n
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    if a.tracked and d["loci_omega_bar"].size:
+        for l in range(n):
+            ax.plot(p, d["loci_omega_bar"][l], "-", lw=1.5, label=f"tracked mode {l + 1}")
+    else:
+        for k in range(n):
+            ax.plot(p, w[:, k], "-", lw=1.5, label=f"locus {k + 1}")
+    ev = d["events"]
+    shown = set()
+    for i in range(len(ev.get("kind", []))):
+        if ev["lower"][i] + 1 >= n:
+            continue
+        veer = ev["kind"][i] == 0
+        label = None
+        key = "veering" if veer else "crossing"
+        if key not in shown:
+            label = ("veering (mode shift)" if veer else "crossing")
+            shown.add(key)
+        ax.plot([ev["parameter"][i]], [ev["omega_bar"][i]], "o" if veer else "x", ms=14 if veer else 10,
+                mfc="none", mec="k" if veer else "r", mew=1.5, label=label)
+        ax.annotate(f"gap {ev['gap'][i]:.3g}", (ev["parameter"][i], ev["omega_bar"][i]), textcoords="offset points",
+                    xytext=(8, -12), fontsize=7)
+    ax.set_xlabel(PARAMETER_LABELS.get(d["name"], d["name"]))
+    ax.set_ylabel(r"$\bar\omega = \omega\sqrt{\rho A L^4/EI}$")
+    ax.set_title(a.title or f"Campbell diagram: {a.file}", fontsize=9)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    out = default_output(a, "_campbell.png")
+    fig.savefig(out, dpi=110)
+    print(out)
+
+
+def cmd_nodes(a):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    d = read_sweep(a.file)
+    p, nodes, count = d["parameter"], d["nodes"], d["node_count"]
+    if len(p) == 0:
+        sys.exit(f"'{a.file}' holds no sweep points")
+    n = min(count.shape[1], a.modes) if a.modes else count.shape[1]
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    for k in range(n):
+        xs, ys = [], []
+        for i in range(len(p)):
+            for j in range(count[i, k]):
+                xs.append(p[i])
+                ys.append(nodes[i, k, j])
+        ax.plot(xs, ys, ".", ms=3, label=f"mode {k + 1}")
+    ax.set_xlabel(PARAMETER_LABELS.get(d["name"], d["name"]))
+    ax.set_ylabel("vibration node x / L")
+    ax.set_ylim(0, 1)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, ncol=2)
+    ax.set_title(a.title or f"vibration nodes: {a.file}", fontsize=9)
+    fig.tight_layout()
+    out = default_output(a, "_nodes.png")
+    fig.savefig(out, dpi=110)
+    print(out)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(prog="strand plot", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -100,6 +208,16 @@ def main(argv=None):
     ln.add_argument("--ylabel")
     ln.add_argument("-o", "--output", required=True)
     ln.set_defaults(run=cmd_lines)
+    for name, fn, what in (("campbell", cmd_campbell, "Campbell diagram of a sweep, veering marked"),
+                           ("nodes", cmd_nodes, "vibration nodes of each mode against the parameter")):
+        c = sub.add_parser(name, help=what)
+        c.add_argument("file")
+        c.add_argument("--modes", type=int, default=0)
+        c.add_argument("--title")
+        c.add_argument("-o", "--output")
+        if name == "campbell":
+            c.add_argument("--tracked", action="store_true")
+        c.set_defaults(run=fn)
     a = p.parse_args(argv)
     a.run(a)
 

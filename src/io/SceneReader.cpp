@@ -563,7 +563,8 @@ public:
 
 private:
   void readModes(const Field& f) {
-    f.expectMap({"count", "coriolis", "method", "projection_modes"});
+    f.expectMap({"count", "coriolis", "method", "projection_modes", "warm_start"});
+    if (const Field w = f.child("warm_start"); w.present()) scene_.modes.warmStart = w.boolean();
     if (const Field count = f.child("count"); count.present()) scene_.modes.count = requireIntAtLeast(count, 1);
     if (const Field c = f.child("coriolis"); c.present()) scene_.modes.coriolis = c.boolean();
     if (const Field m = f.child("method"); m.present()) scene_.modes.method = pick(m, "modal method", kModalMethods).value;
@@ -614,7 +615,7 @@ private:
   }
 
   void readSweep(const Field& f) {
-    f.expectMap({"parameter", "from", "to", "points", "mass"});
+    f.expectMap({"parameter", "from", "to", "points", "mass", "refine"});
     model::SweepDesc& s = scene_.sweep;
     s.present = true;
     s.mark = f.mark();
@@ -622,6 +623,7 @@ private:
     s.from = f.child("from").number();
     s.to = f.child("to").number();
     s.points = requireIntAtLeast(f.child("points"), 2);
+    if (const Field r = f.child("refine"); r.present()) s.refine = requireIntAtLeast(r, 0);
     const bool massSweep = s.parameter == model::SweepParameter::MassRatio || s.parameter == model::SweepParameter::MassLocation;
     if (const Field m = f.child("mass"); m.present()) {
       if (!massSweep) m.fail("only mass_ratio and mass_location sweeps move a point mass");

@@ -10,6 +10,12 @@
 namespace strand::solvers {
 
 namespace {
+
+// Krylov basis storage: one Vec per column (BVVECS) rather than one contiguous block (BVSVEC,
+// SLEPc's default). Measured on the 2D rotating cantilever (docs/performance.md): 2,000 DOF,
+// 200 sweep points: EPS 1.78 -> 1.35 s, PEP 5.2 -> 3.1 s; 20,000 DOF: EPS 0.089 -> 0.070 s per point.
+// -modal_bv_type overrides it.
+constexpr BVType kBasisType = BVVECS;
 constexpr int kPepMaxDofs = 5000;  // auto: TOAR up to this size, projection above (design section 4)
 
 // Rotate a complex vector x = xr + i xi by a phase so that its real part carries the most energy
@@ -46,6 +52,7 @@ ModalOptions modalOptions(const model::ModesDesc& modes) {
   opt.coriolis = modes.coriolis;
   opt.method = modes.method;
   opt.projectionModes = modes.projectionModes;
+  opt.warmStart = modes.warmStart;
   return opt;
 }
 
@@ -129,6 +136,7 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
   MPI_Comm comm = _asm.dofs().comm();
   if (!_eps) {
     ST st;
+    BV bv;
     PetscCall(EPSCreate(comm, &_eps));
     PetscCall(EPSSetOptionsPrefix(_eps, "modal_"));
     PetscCall(EPSSetProblemType(_eps, EPS_GHEP));
@@ -138,6 +146,8 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
     PetscCall(EPSSetTolerances(_eps, 1e-12, 200));
     PetscCall(EPSGetST(_eps, &st));
     PetscCall(useShiftInvert(st, comm));
+    PetscCall(EPSGetBV(_eps, &bv));
+    PetscCall(BVSetType(bv, kBasisType));
     PetscCall(EPSSetOperators(_eps, _Kf, _Mf));
     PetscCall(EPSSetFromOptions(_eps));
   } else {
@@ -192,6 +202,7 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
   Mat A[3] = {_Kf, _Gf, _Mf};
   if (!_pep) {
     ST st;
+    BV bv;
     PetscCall(PEPCreate(comm, &_pep));
     PetscCall(PEPSetOptionsPrefix(_pep, "modal_"));
     PetscCall(PEPSetType(_pep, PEPTOAR));
@@ -206,6 +217,8 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
     PetscCall(PEPSetTolerances(_pep, 1e-12, 200));
     PetscCall(PEPGetST(_pep, &st));
     PetscCall(useShiftInvert(st, comm));
+    PetscCall(PEPGetBV(_pep, &bv));
+    PetscCall(BVSetType(bv, kBasisType));
     PetscCall(PEPSetOperators(_pep, 3, A));
     PetscCall(PEPSetFromOptions(_pep));
   } else {

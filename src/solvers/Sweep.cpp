@@ -3,6 +3,7 @@
 #include <cmath>
 #include <memory>
 
+#include "strand/math/Hermite.hpp"
 #include "strand/solvers/ModalSolver.hpp"
 #include "strand/solvers/Problem.hpp"
 #include "strand/solvers/StaticSolver.hpp"
@@ -23,6 +24,7 @@ const char* parameterName(model::SweepParameter p) {
 // A mode shape x = xr + i xi and M x, kept for MAC values between any two points.
 struct StoredShape {
   Vec xr = nullptr, xi = nullptr, mr = nullptr, mi = nullptr;
+  double norm2 = 0.0;  // x^H M x
 };
 
 PetscErrorCode storeShape(Mat M, Vec xr, Vec xi, StoredShape* s) {
@@ -36,6 +38,36 @@ PetscErrorCode storeShape(Mat M, Vec xr, Vec xi, StoredShape* s) {
     PetscCall(VecCopy(xi, s->xi));
     PetscCall(VecDuplicate(xi, &s->mi));
     PetscCall(MatMult(M, xi, s->mi));
+  }
+  PetscScalar a = 0.0, b = 0.0;
+  PetscCall(VecDot(s->xr, s->mr, &a));
+  if (xi) PetscCall(VecDot(s->xi, s->mi, &b));
+  s->norm2 = a + b;
+  PetscFunctionReturn(0);
+}
+
+// MAC of every shape of `prev` with every shape of `next` (row-major prev x next): four
+// multi-dot products per shape of `next` instead of eight dots per pair.
+PetscErrorCode macTable(const std::vector<StoredShape>& prev, const std::vector<StoredShape>& next,
+                        std::vector<double>* out) {
+  PetscFunctionBeginUser;
+  const PetscInt n = static_cast<PetscInt>(prev.size());
+  const bool complex = !prev.empty() && prev[0].xi && !next.empty() && next[0].xi;
+  std::vector<Vec> pr(n), pi(n);
+  for (PetscInt a = 0; a < n; ++a) pr[a] = prev[a].xr, pi[a] = prev[a].xi;
+  std::vector<PetscScalar> rr(n), ii(n, 0.0), ri(n, 0.0), ir(n, 0.0);
+  out->assign(prev.size() * next.size(), 0.0);
+  for (size_t b = 0; b < next.size(); ++b) {
+    PetscCall(VecMDot(next[b].mr, n, pr.data(), rr.data()));  // x_r^T M y_r (M symmetric)
+    if (complex) {
+      PetscCall(VecMDot(next[b].mi, n, pi.data(), ii.data()));
+      PetscCall(VecMDot(next[b].mi, n, pr.data(), ri.data()));
+      PetscCall(VecMDot(next[b].mr, n, pi.data(), ir.data()));
+    }
+    for (PetscInt a = 0; a < n; ++a) {
+      const double re = rr[a] + ii[a], im = ri[a] - ir[a];
+      (*out)[a * next.size() + b] = (re * re + im * im) / (prev[a].norm2 * next[b].norm2);
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -52,8 +84,12 @@ double mac(const StoredShape& x, const StoredShape& y) {
   return (re * re + im * im) / (xx * yy);
 }
 
-// Vibration nodes of a mode shape on body 0: sign changes of its dominant displacement component
-// between nodes 1..N (node 0 is the clamp), linearly interpolated, as x / L.
+// Vibration nodes of a mode shape on body 0: interior zeros of its dominant displacement component
+// w(x), as x / L. Within each element w is the cubic Hermite interpolant of the nodal values and
+// slopes (seed 003 Eq. 69-71), so the nodes converge like the shape (h^4), not like a chord (h^2).
+// Elements whose end values differ in sign are searched: 8 sub-intervals bracket the zero, which
+// is then bisected. (Two zeros inside one element, with equal end signs, mean a mesh too coarse
+// for that mode and are not reported.)
 std::vector<double> vibrationNodes(const model::Model& m, const std::vector<double>& disp) {
   const model::Body& b = m.bodies()[0];
   const int d = m.dim();
@@ -66,11 +102,27 @@ std::vector<double> vibrationNodes(const model::Model& m, const std::vector<doub
   double amax = 0.0;
   for (int pb : b.posBlock) amax = std::max(amax, std::fabs(disp[pb * d + c]));
   std::vector<double> nodes;
-  const double tiny = 1e-8 * amax;
-  for (int n = 1; n < b.elements; ++n) {
-    const double w0 = disp[b.posBlock[n] * d + c], w1 = disp[b.posBlock[n + 1] * d + c];
-    if (std::fabs(w0) < tiny || std::fabs(w1) < tiny || (w0 > 0) == (w1 > 0)) continue;
-    nodes.push_back((n + w0 / (w0 - w1)) / b.elements);
+  const double tiny = 1e-8 * amax, l = b.elementLength;
+  for (int n = 0; n < b.elements; ++n) {
+    const double w1 = disp[b.posBlock[n] * d + c], w2 = disp[b.posBlock[n + 1] * d + c];
+    if ((w1 > 0) == (w2 > 0) && std::fabs(w1) >= tiny && std::fabs(w2) >= tiny) continue;
+    const double t1 = disp[b.slopeBlock[n] * d + c] / b.slopeScale[n];
+    const double t2 = disp[b.slopeBlock[n + 1] * d + c] / b.slopeScale[n + 1];
+    auto w = [&](double eta) {
+      const auto h = math::hermite(eta);
+      return h.s[0] * w1 + h.s[1] * l * t1 + h.s[2] * w2 + h.s[3] * l * t2;
+    };
+    constexpr int kSub = 8;
+    for (int j = 0; j < kSub; ++j) {
+      double a = double(j) / kSub, z = double(j + 1) / kSub, fa = w(a), fz = w(z);
+      if (std::fabs(fa) < tiny || std::fabs(fz) < tiny || (fa > 0) == (fz > 0)) continue;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (a + z), fm = w(mid);
+        if ((fm > 0) == (fa > 0)) a = mid, fa = fm;
+        else z = mid;
+      }
+      nodes.push_back((n + 0.5 * (a + z)) / b.elements);
+    }
   }
   return nodes;
 }
@@ -81,6 +133,33 @@ std::vector<double> bodyDisplacements(const model::Model& m, const std::vector<d
   for (int pb : m.bodies()[0].posBlock)
     for (int c = 0; c < m.dim(); ++c) out.push_back(disp[pb * m.dim() + c]);
   return out;
+}
+
+// Each event is re-measured by a local sweep of `refine` + 1 points between the points where its
+// shapes were compared: a coarse grid overestimates the minimum gap and, landing beside the closest
+// approach, can see pure shapes at a veering and call it a crossing.
+PetscErrorCode refineEvents(MPI_Comm comm, const model::SceneDescription& scene, SweepResult* out) {
+  PetscFunctionBeginUser;
+  for (LociEvent& e : out->events) {
+    model::SceneDescription sub = scene;
+    sub.sweep.from = out->parameter[e.left];
+    sub.sweep.to = out->parameter[e.right];
+    sub.sweep.points = scene.sweep.refine + 1;
+    sub.sweep.refine = 0;
+    SweepResult local;
+    PetscCall(runSweep(comm, sub, &local));
+    const LociEvent* best = nullptr;
+    for (const LociEvent& f : local.events)
+      if (f.lower == e.lower && (!best || f.gap < best->gap)) best = &f;
+    if (!local.failure.empty() || !best) continue;  // keep the coarse numbers
+    e.parameter = best->parameter;
+    e.gap = best->gap;
+    e.frequency = best->frequency;
+    e.mixing = std::min(e.mixing, best->mixing);
+    e.kind = e.mixing < 0.9 ? "veering" : "crossing";
+    e.refined = true;
+  }
+  PetscFunctionReturn(0);
 }
 
 }  // namespace
@@ -98,6 +177,8 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
   std::unique_ptr<Problem> problem;
   std::unique_ptr<ModalSolver> modal;
   Vec X = nullptr;
+  Vec Xold = nullptr;           // steady state of the point before the last, for the predictor
+  double sOld = 0.0, sCur = 0.0;  // continuation variable at the last two points
   Mat Mmac = nullptr;  // fixed inner product for MAC: the mass matrix of the first point
   std::vector<std::vector<StoredShape>> stored;
   for (int i = 0; i < sw.points; ++i) {
@@ -130,6 +211,23 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
     if (sw.parameter == model::SweepParameter::Gamma) omega = p / T;
     if (sw.parameter == model::SweepParameter::Omega) omega = p;
     problem->setAngularSpeed(omega);
+    // Secant predictor in s = Omega^2 (the centrifugal load is linear in it) or in the mass
+    // parameter: X <- X_i-1 + (s - s_i-1) / (s_i-1 - s_i-2) (X_i-1 - X_i-2). Newton then needs
+    // one or two iterations instead of three or four (docs/performance.md).
+    const double s = speedSweep ? omega * omega : p;
+    if (i >= 2 && sCur != sOld) {
+      Vec D;
+      PetscCall(VecDuplicate(X, &D));
+      PetscCall(VecWAXPY(D, -1.0, Xold, X));
+      PetscCall(VecCopy(X, Xold));
+      PetscCall(VecAXPY(X, (s - sCur) / (sCur - sOld), D));
+      PetscCall(VecDestroy(&D));
+    } else if (i >= 1) {
+      if (!Xold) PetscCall(VecDuplicate(X, &Xold));
+      PetscCall(VecCopy(X, Xold));
+    }
+    sOld = sCur;
+    sCur = s;
     {
       StaticSolver steady(problem->assembler(), i == 0 ? scene.statics.loadSteps : 1);
       PetscCall(steady.setFromOptions());
@@ -170,10 +268,8 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
     out->nodes.push_back(nodes);
     out->shapes.push_back(shapes);
     if (!stored.empty()) {
-      const auto& prev = stored.back();
-      std::vector<double> m(prev.size() * here.size());
-      for (size_t a = 0; a < prev.size(); ++a)
-        for (size_t b = 0; b < here.size(); ++b) m[a * here.size() + b] = mac(prev[a], here[b]);
+      std::vector<double> m;
+      PetscCall(macTable(stored.back(), here, &m));
       out->macNext.push_back(m);
     }
     stored.push_back(here);
@@ -189,11 +285,13 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
                                    [&](int i, int a, int j, int b) { return mac(stored[i][a], stored[j][b]); });
   }
   // MPI: the MAC callbacks above are collective (VecDot); every rank runs the same sequence.
+  if (sw.refine > 0 && out->failure.empty()) PetscCall(refineEvents(comm, scene, out));
   for (auto& row : stored)
     for (StoredShape& s : row)
       for (Vec* v : {&s.xr, &s.xi, &s.mr, &s.mi}) PetscCall(VecDestroy(v));
   modal.reset();
   PetscCall(VecDestroy(&X));
+  PetscCall(VecDestroy(&Xold));
   PetscCall(MatDestroy(&Mmac));
   out->seconds = MPI_Wtime() - t0;
   PetscFunctionReturn(0);

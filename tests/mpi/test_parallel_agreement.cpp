@@ -9,6 +9,8 @@
 #include <cmath>
 
 #include "strand/solvers/ModalSolver.hpp"
+#include "strand/solvers/Sweep.hpp"
+#include "support/Rotating.hpp"
 #include "support/Scenes.hpp"
 
 using namespace strand;
@@ -107,4 +109,40 @@ TEST(ParallelAgreement, ModalFrequencies) {
     }
     for (int k = 0; k < 4; ++k) EXPECT_NEAR(w[0][k] / w[1][k], 1.0, 1e-10) << "dim " << dim << " mode " << k;
   }
+}
+
+// requirement (issue 4): -n 1 and -n 2 give the same frequencies. A mass-location sweep of the
+// rotating chordwise beam with Coriolis (PEP, complex shapes, MAC tracking, veering detection,
+// local refinement): frequencies to 1e-9, the same events at the same parameter.
+TEST(ParallelAgreement, RotatingSweepWithCoriolis) {
+  auto sc = rotatingCantilever(2, 16, 10.0, 0.0, 70.0);
+  model::PointMassDesc pm;
+  pm.at = 0.5;
+  pm.mass = 2.0 * 1000.0 * 1e-2;
+  sc.bodies[0].pointMasses.push_back(pm);
+  sc.sweep.present = true;
+  sc.sweep.parameter = model::SweepParameter::MassLocation;
+  sc.sweep.from = 0.3;
+  sc.sweep.to = 0.6;
+  sc.sweep.points = 16;
+  sc.sweep.refine = 10;
+  sc.modes.count = 5;
+  sc.modes.coriolis = true;
+  solvers::SweepResult r[2];
+  MPI_Comm comms[2] = {PETSC_COMM_WORLD, PETSC_COMM_SELF};
+  for (int c = 0; c < 2; ++c) PetscCallAbort(comms[c], solvers::runSweep(comms[c], sc, &r[c]));
+  ASSERT_EQ(r[0].omegaBar.size(), r[1].omegaBar.size());
+  double dev = 0.0;
+  for (size_t i = 0; i < r[0].omegaBar.size(); ++i)
+    for (size_t k = 0; k < r[0].omegaBar[i].size(); ++k)
+      dev = std::max(dev, std::fabs(r[0].omegaBar[i][k] / r[1].omegaBar[i][k] - 1.0));
+  std::printf("max relative frequency difference, distributed vs serial: %.1e\n", dev);
+  EXPECT_LT(dev, 1e-9);
+  ASSERT_EQ(r[0].events.size(), 1u);  // veering of loci 3-4 near beta = 0.44
+  ASSERT_EQ(r[1].events.size(), 1u);
+  EXPECT_EQ(r[0].events[0].kind, "veering");
+  EXPECT_EQ(r[0].events[0].kind, r[1].events[0].kind);
+  EXPECT_NEAR(r[0].events[0].parameter, r[1].events[0].parameter, 1e-6);
+  EXPECT_NEAR(r[0].events[0].gap / r[1].events[0].gap, 1.0, 1e-6);
+  EXPECT_EQ(r[0].label, r[1].label);
 }

@@ -125,3 +125,38 @@ TEST(Cli, RotatingBeamModesScene) {
     EXPECT_NE(r.output.find(w), std::string::npos) << w << "\n" << r.output;
   fs::remove_all(dir);
 }
+
+// `strand sweep` on the shipped veering scene: the report, the HDF5 /sweep layout and the CSV
+// files, and `strand plot campbell` / `nodes` (PNG written). The veering itself is verified in
+// verify_rotating_sweep; here gamma = 31.2 +- 0.5 and the mode shift must reach the user.
+TEST(Cli, SweepSceneWritesLociEventsAndCampbellDiagram) {
+  const fs::path dir = scratchDir("sweep");
+  const fs::path out = dir / "veering.h5";
+  auto r = runCommand(strandBinary() + " sweep " + sourceDir() + "/meshes/rotating-beam-veering.yaml -o " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("veering of loci 3-4 at gamma 31."), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(mode shift)"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "veering.csv"));
+  EXPECT_TRUE(fs::exists(dir / "veering_events.csv"));
+  const std::string check =
+      "/usr/bin/python3 -c \"import h5py,sys; f=h5py.File(sys.argv[1]); g=f['sweep']; "
+      "assert g['omega_bar'].shape==(61,5), g['omega_bar'].shape; assert g['mac'].shape==(60,5,5); "
+      "assert g['shapes'].shape==(61,5,17,2), g['shapes'].shape; assert g['loci_omega_bar'].shape==(5,61); "
+      "assert list(g['events/kind'][()])==[0]; assert g['events/refined'][0]==1; "
+      "assert f.attrs['status']=='ok'; print('ok')\" " + out.string();
+  auto c = runCommand(check);
+  EXPECT_EQ(c.exitCode, 0) << c.output;
+  auto p = runCommand(strandBinary() + " plot campbell " + out.string() + " -o " + (dir / "c.png").string());
+  EXPECT_EQ(p.exitCode, 0) << p.output;
+  EXPECT_TRUE(fs::exists(dir / "c.png"));
+  auto n = runCommand(strandBinary() + " plot nodes " + out.string());
+  EXPECT_EQ(n.exitCode, 0) << n.output;
+  EXPECT_TRUE(fs::exists(dir / "veering_nodes.png"));
+  fs::remove_all(dir);
+}
+
+TEST(Cli, SweepWithoutSweepSectionIsBadInput) {
+  auto r = runCommand(strandBinary() + " sweep " + sourceDir() + "/meshes/rotating-beam-modes.yaml -o /tmp/x.h5");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("no 'sweep' section"), std::string::npos) << r.output;
+}

@@ -96,3 +96,125 @@ TEST(RotatingSweep, TipMassFrequencies) {
     EXPECT_NEAR(chord[k] / refChord[k], 1.0, 2e-5);
   }
 }
+
+namespace {
+// The chordwise beam of seed 003's mass studies in our units: mu = 70, gamma = 10, one point mass.
+model::SceneDescription beamWithMass(double location, double massRatio) {
+  auto sc = rotatingCantilever(2, 16, 10.0, 0.0, 70.0);
+  model::PointMassDesc pm;
+  pm.at = location;
+  pm.mass = massRatio * 1000.0 * 1e-2;  // alpha = m / (rho A L)
+  sc.bodies[0].pointMasses.push_back(pm);
+  return sc;
+}
+
+int countKind(const solvers::SweepResult& r, const std::string& kind) {
+  int n = 0;
+  for (const auto& e : r.events) n += e.kind == kind;
+  return n;
+}
+}  // namespace
+
+// requirement: veering caused by the mass ratio, and multiple veering (seed 003 abstract: "veering
+// rather than crossing ... due to the changing of the magnitude of the concentrated mass"; "the
+// loci will veer more than once due to different types of mode coupling between the bending and
+// stretching vibrations"). A tip mass (beta = 1) of growing alpha lowers the stretching frequency
+// (about mu / sqrt(alpha) for large alpha) and raises the bending ones (more tension), so the
+// stretching locus passes the 3rd and then the 2nd bending locus. With Coriolis both approaches
+// veer with a mode shift; without it the families are uncoupled and the loci cross (gap 0).
+// Measured (100 points, alpha 0.05..5, refined by 21-point local sweeps): veering of loci 3-4 at
+// alpha = 0.5325 (gap 0.39, mixing 0.75) and of loci 2-3 at alpha = 1.974 (gap 0.51, mixing
+// 0.58); without Coriolis crossings at alpha = 0.491 and 1.767 with fitted gap 0.
+TEST(RotatingSweep, MassRatioMakesTheStretchingLocusVeerTwice) {
+  const auto sc = beamWithMass(1.0, 0.1);
+  const auto with = sweep(sc, model::SweepParameter::MassRatio, 0.05, 5.0, 100, 6, true);
+  const auto without = sweep(sc, model::SweepParameter::MassRatio, 0.05, 5.0, 100, 6, false);
+  std::printf("mass ratio, with Coriolis:\n");
+  print(with);
+  std::printf("mass ratio, without Coriolis:\n");
+  print(without);
+  ASSERT_EQ(with.events.size(), 2u);
+  EXPECT_EQ(countKind(with, "veering"), 2);
+  // one locus veers twice: first with the locus above it (3-4), then with the next one down (2-3)
+  EXPECT_EQ(with.events[0].lower, 2);
+  EXPECT_EQ(with.events[1].lower, 1);
+  for (const auto& e : with.events) {
+    EXPECT_TRUE(e.modeShift);
+    EXPECT_TRUE(e.refined);
+    EXPECT_GT(e.gap / e.frequency, 3e-3);
+  }
+  EXPECT_NEAR(with.events[0].parameter, 0.53, 0.05);
+  EXPECT_NEAR(with.events[1].parameter, 1.97, 0.1);
+  ASSERT_EQ(without.events.size(), 2u);
+  EXPECT_EQ(countKind(without, "crossing"), 2);
+  for (const auto& e : without.events) EXPECT_LT(e.gap / e.frequency, 1e-3);
+}
+
+// requirement: veering caused by the mass location, multiple veering. alpha = 2, beta from the
+// clamp to the tip: the stretching locus falls through loci 5, 4 and 3 in turn. Measured (100
+// points): veering of loci 4-5 at beta = 0.167, 3-4 at 0.436, 2-3 at 0.814 (gaps 0.97, 0.57,
+// 0.94); without Coriolis crossings at 0.160, 0.422, 0.792.
+TEST(RotatingSweep, MassLocationMakesTheStretchingLocusVeerThreeTimes) {
+  const auto sc = beamWithMass(0.5, 2.0);
+  const auto with = sweep(sc, model::SweepParameter::MassLocation, 0.0, 1.0, 100, 6, true);
+  const auto without = sweep(sc, model::SweepParameter::MassLocation, 0.0, 1.0, 100, 6, false);
+  std::printf("mass location, with Coriolis:\n");
+  print(with);
+  std::printf("mass location, without Coriolis:\n");
+  print(without);
+  ASSERT_EQ(with.events.size(), 3u);
+  EXPECT_EQ(countKind(with, "veering"), 3);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(with.events[k].lower, 3 - k);
+    EXPECT_TRUE(with.events[k].modeShift);
+    EXPECT_NEAR(with.events[k].parameter, without.events[k].parameter, 0.03);
+  }
+  ASSERT_EQ(without.events.size(), 3u);
+  EXPECT_EQ(countKind(without, "crossing"), 3);
+}
+
+// requirement: vibration nodes of each mode shape against the parameter. At gamma = 0 they are
+// the zeros of the Euler-Bernoulli cantilever modes, cosh bx - cos bx - s (sinh bx - sin bx)
+// (Blevins, Formulas for Natural Frequency and Mode Shape, Table 8-1: 0.783; 0.504, 0.868;
+// 0.358, 0.644, 0.906; 12 digits computed with mpmath). The nodes are the zeros of the cubic
+// Hermite interpolant, so their error falls like h^4 (faster at gamma = 0). At gamma = 10 the reference is an
+// independent Hermite FEM of the linear rotating beam, w'''' - (T w')' = omega^2 w with
+// T = gamma^2 (1 - x^2) / 2 (100 and 200 elements agree to 1e-9; the chordwise shapes equal the
+// flapwise ones). Rotation moves the node of mode 2 inboard (0.7834 -> 0.7748) and those of
+// modes 3 and 4 outboard; mode k keeps k - 1 nodes along the sweep.
+TEST(RotatingSweep, VibrationNodes) {
+  const double ref0[3][3] = {{0.783444550501, 0, 0}, {0.503547873377, 0.867677591603, 0},
+                             {0.358337517757, 0.644087938166, 0.905564006955}};
+  const double ref10[3][3] = {{0.7748473877, 0, 0}, {0.5070810432, 0.8719374721, 0},
+                              {0.3610819032, 0.6508680877, 0.9083149430}};
+  std::vector<double> err0, err10;
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  for (int n : {16, 32, 64}) {
+    auto sc = rotatingCantilever(2, n, 0.0, 0.0, 1e6);
+    const auto r = sweep(sc, model::SweepParameter::Gamma, 0.0, 10.0, 6, 4, false);
+    if (rank != 0) continue;  // shapes and nodes live on rank 0
+    double e0 = 0.0, e10 = 0.0;
+    for (int k = 1; k < 4; ++k) {
+      for (size_t i = 0; i < r.parameter.size(); ++i)
+        ASSERT_EQ(r.nodes[i][k].size(), static_cast<size_t>(k)) << "mode " << k + 1 << " point " << i;
+      for (int j = 0; j < k; ++j) {
+        e0 = std::max(e0, std::fabs(r.nodes[0][k][j] - ref0[k - 1][j]));
+        e10 = std::max(e10, std::fabs(r.nodes.back()[k][j] - ref10[k - 1][j]));
+      }
+    }
+    EXPECT_LT(r.nodes.back()[1][0], r.nodes[0][1][0]);  // inboard
+    EXPECT_GT(r.nodes.back()[2][0], r.nodes[0][2][0]);  // outboard
+    std::printf("N = %d: max node error at gamma = 0: %.2e, at gamma = 10: %.2e\n", n, e0, e10);
+    err0.push_back(e0);
+    err10.push_back(e10);
+  }
+  if (rank != 0) return;
+  // measured: gamma 0: 4.7e-6, 8.1e-8, 3.9e-9 (rates 58, 21); gamma 10: 2.1e-5, 2.1e-6, 1.7e-7
+  // (rates 10, 12.6; 15.1 at N = 128: pre-asymptotic, approaching h^4 from below)
+  EXPECT_LT(err0[2], 1e-8);
+  EXPECT_LT(err10[2], 1e-6);
+  EXPECT_GT(err0[0] / err0[1], 16.0);
+  EXPECT_GT(err0[1] / err0[2], 16.0);
+  EXPECT_GT(err10[1] / err10[2], 12.0);
+}

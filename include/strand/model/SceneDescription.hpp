@@ -118,6 +118,7 @@ struct ModesDesc {
   bool coriolis = false;  // include the gyroscopic matrix G (quadratic eigenproblem)
   ModalMethod method = ModalMethod::Auto;  // auto: eps without Coriolis; pep up to 5000 DOFs, else projected
   int projectionModes = 0;                 // projected: basis size (0: max(2 count, count + 10))
+  bool warmStart = false;  // sweeps: start eps from the previous eigenvectors (can skip a mode, docs/performance.md)
 };
 
 enum class SweepParameter { Gamma, Omega, MassRatio, MassLocation };
@@ -127,6 +128,7 @@ struct SweepDesc {
   double from = 0.0, to = 0.0;
   int points = 2;
   int mass = 0;  // point mass of the first body that mass_ratio / mass_location move
+  int refine = 20;  // points of a local sweep around each detected event (0: report the coarse event)
   SourceMark mark;
 };
 

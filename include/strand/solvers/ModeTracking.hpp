@@ -25,12 +25,14 @@ struct LociEvent {
   std::string kind;          // "veering" or "crossing"
   int lower = 0;             // sorted locus index a (0-based) of the pair (a, a + 1)
   int point = 0;             // sweep point of the minimum gap
-  double parameter = 0.0;    // parameter value there
-  double gap = 0.0;          // minimum gap omega_{a+1} - omega_a (units of omega)
+  double parameter = 0.0;    // parameter value of the minimum gap (parabola in gap^2 through 3 points)
+  double gap = 0.0;          // minimum gap omega_{a+1} - omega_a (units of omega), same fit
   double frequency = 0.0;    // mean of the two frequencies there
   double exchange = 0.0;     // min(MAC(a at left end, a+1 at right end), MAC(a+1 left, a right))
   double mixing = 0.0;       // max MAC of the lower shape at the minimum with the two left-end shapes
   bool modeShift = false;    // exchange > 0.5
+  int left = 0, right = 0;   // points where the shapes were compared (gap grown to 5 x its minimum)
+  bool refined = false;      // the numbers come from a local sweep between `left` and `right`
 };
 
 // mac(i, a, j, b): MAC between sorted mode a at point i and sorted mode b at point j.

@@ -1,0 +1,86 @@
+// `strand sweep SCENE`: the modes of the scene along its `sweep` (angular speed, mass ratio or
+// mass location), tracked by MAC, with veering and crossing detected; writes HDF5 + CSV.
+#include <petscsys.h>
+
+#include <cstdio>
+#include <string>
+
+#include "Commands.hpp"
+#include "Progress.hpp"
+#include "strand/core/Error.hpp"
+#include "strand/io/SceneReader.hpp"
+#include "strand/io/SweepWriter.hpp"
+#include "strand/solvers/Sweep.hpp"
+
+namespace strand::drivers {
+namespace {
+
+std::string fmt(const char* f, double a) {
+  char b[64];
+  std::snprintf(b, sizeof(b), f, a);
+  return b;
+}
+
+std::string pointLine(int i, int points, const solvers::SweepResult& r) {
+  std::string s = "point " + std::to_string(i + 1) + "/" + std::to_string(points) + "  " + r.parameterName + " " +
+                  fmt("%.6g", r.parameter.back()) + "  omega_bar";
+  const auto& w = r.omegaBar.back();
+  for (size_t k = 0; k < w.size() && k < 8; ++k) s += " " + fmt("%.6g", w[k]);
+  if (w.size() > 8) s += " ...";
+  return s;
+}
+
+}  // namespace
+
+int runSweepScene(const char* scenePath) {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  auto say = [&](const std::string& s) {
+    if (rank == 0) std::printf("%s\n", s.c_str());
+  };
+  try {
+    const model::SceneDescription scene = io::readScene(scenePath);
+    if (!scene.sweep.present)
+      throw InputError(scene.file + ": no 'sweep' section: `strand sweep` needs sweep: {parameter, from, to, "
+                       "points} (docs/scene-reference.md#sweep); use `strand modes` for one point");
+    const std::string out = outputPath(scene);
+    int size;
+    MPI_Comm_size(comm, &size);
+    say("strand " + std::string(kVersion) + ": " + scene.file + ": sweep of " + std::to_string(scene.sweep.points) +
+        " points, " + std::to_string(scene.modes.count) + " modes, " + std::to_string(size) + " rank(s)");
+    Progress progress(comm);
+    solvers::SweepResult r;
+    PetscCallAbort(comm, solvers::runSweep(comm, scene, &r, [&](int i, const solvers::SweepResult& res) {
+                     progress.update(pointLine(i, scene.sweep.points, res));
+                   }));
+    progress.finish();
+    io::writeSweep(comm, out, io::SweepInfo{scene.file, kVersion, scene.dimension}, r);
+    for (const auto& e : r.events)
+      say(e.kind + " of loci " + std::to_string(e.lower + 1) + "-" + std::to_string(e.lower + 2) + " at " +
+          r.parameterName + " " + fmt("%.6g", e.parameter) + ": gap " + fmt("%.4g", e.gap) + " at omega_bar " +
+          fmt("%.6g", e.frequency) + ", MAC mixing " + fmt("%.2f", e.mixing) + ", exchange " +
+          fmt("%.2f", e.exchange) + (e.modeShift ? " (mode shift)" : ""));
+    if (r.events.empty()) say("no veering or crossing among the " + std::to_string(scene.modes.count) + " lowest loci");
+    if (!r.failure.empty()) {
+      if (rank == 0) std::fprintf(stderr, "strand: error: %s\n", r.failure.c_str());
+      say("output so far: " + out + " (readable, status = failed)");
+      return kExitDiverged;
+    }
+    say("method " + r.method + ", wall time " + fmt("%.3f s", r.seconds) + " (" +
+        fmt("%.4f s", r.seconds / std::max<size_t>(1, r.parameter.size())) + " per point); output: " + out + " (+ " +
+        io::sweepCsvPath(out) + ", " + io::sweepEventsCsvPath(out) + ")");
+    return kExitSuccess;
+  } catch (const InputError& e) {
+    if (rank == 0) std::fprintf(stderr, "strand: bad input: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const SolveError& e) {
+    if (rank == 0) std::fprintf(stderr, "strand: error: %s\n", e.what());
+    return kExitDiverged;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "strand: internal error on rank %d: %s\n", rank, e.what());
+    return kExitInternal;
+  }
+}
+
+}  // namespace strand::drivers
