@@ -1,6 +1,10 @@
 // Subcommands of the `strand` executable. Each returns a process exit code (strand::ExitCode).
 #pragma once
+#include <cstdio>
+#include <functional>
 #include <string>
+
+#include <mpi.h>
 
 #include "strand/model/SceneDescription.hpp"
 
@@ -15,6 +19,17 @@ int runScene(const char* scenePath, RunMode mode);
 int runSweepScene(const char* scenePath);
 
 extern const char* kVersion;
+
+// Runs `body` on every rank and turns exceptions into exit codes and one message (RunCommand.cpp):
+// InputError -> 2 ("bad input"), SolveError -> 3, anything else -> 1 (internal, with the rank).
+int guarded(MPI_Comm comm, const std::function<int()>& body);
+
+// printf-style formatting of one number.
+inline std::string fmt(const char* f, double a) {
+  char b[64];
+  std::snprintf(b, sizeof(b), f, a);
+  return b;
+}
 // The output file: -o FILE, else the scene's output.file, else <scene stem>.h5 in the working directory.
 std::string outputPath(const model::SceneDescription& scene);
 

@@ -44,12 +44,6 @@ bool hasLoads(const model::SceneDescription& s) {
          (s.rotation.present && s.rotation.omega != 0.0);  // the centrifugal load of a rotating frame
 }
 
-std::string fmt(const char* f, double a) {
-  char b[64];
-  std::snprintf(b, sizeof(b), f, a);
-  return b;
-}
-
 class SceneRun {
 public:
   SceneRun(MPI_Comm comm, const model::SceneDescription& scene, RunMode mode)
@@ -188,14 +182,11 @@ private:
 
 }  // namespace
 
-int runScene(const char* scenePath, RunMode mode) {
-  MPI_Comm comm = PETSC_COMM_WORLD;
+int guarded(MPI_Comm comm, const std::function<int()>& body) {
   int rank;
   MPI_Comm_rank(comm, &rank);
   try {
-    const model::SceneDescription scene = io::readScene(scenePath);
-    SceneRun run(comm, scene, mode);
-    return run.execute();
+    return body();
   } catch (const InputError& e) {
     if (rank == 0) std::fprintf(stderr, "strand: bad input: %s\n", e.what());
     return kExitBadInput;
@@ -206,6 +197,15 @@ int runScene(const char* scenePath, RunMode mode) {
     std::fprintf(stderr, "strand: internal error on rank %d: %s\n", rank, e.what());
     return kExitInternal;
   }
+}
+
+int runScene(const char* scenePath, RunMode mode) {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  return guarded(comm, [&] {
+    const model::SceneDescription scene = io::readScene(scenePath);
+    SceneRun run(comm, scene, mode);
+    return run.execute();
+  });
 }
 
 }  // namespace strand::drivers

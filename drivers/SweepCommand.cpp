@@ -15,12 +15,6 @@
 namespace strand::drivers {
 namespace {
 
-std::string fmt(const char* f, double a) {
-  char b[64];
-  std::snprintf(b, sizeof(b), f, a);
-  return b;
-}
-
 std::string pointLine(int i, int points, const solvers::SweepResult& r) {
   std::string s = "point " + std::to_string(i + 1) + "/" + std::to_string(points) + "  " + r.parameterName + " " +
                   fmt("%.6g", r.parameter.back()) + "  omega_bar";
@@ -39,7 +33,7 @@ int runSweepScene(const char* scenePath) {
   auto say = [&](const std::string& s) {
     if (rank == 0) std::printf("%s\n", s.c_str());
   };
-  try {
+  return guarded(comm, [&] {
     const model::SceneDescription scene = io::readScene(scenePath);
     if (!scene.sweep.present)
       throw InputError(scene.file + ": no 'sweep' section: `strand sweep` needs sweep: {parameter, from, to, "
@@ -71,16 +65,7 @@ int runSweepScene(const char* scenePath) {
         fmt("%.4f s", r.seconds / std::max<size_t>(1, r.parameter.size())) + " per point); output: " + out + " (+ " +
         io::sweepCsvPath(out) + ", " + io::sweepEventsCsvPath(out) + ")");
     return kExitSuccess;
-  } catch (const InputError& e) {
-    if (rank == 0) std::fprintf(stderr, "strand: bad input: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const SolveError& e) {
-    if (rank == 0) std::fprintf(stderr, "strand: error: %s\n", e.what());
-    return kExitDiverged;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "strand: internal error on rank %d: %s\n", rank, e.what());
-    return kExitInternal;
-  }
+  });
 }
 
 }  // namespace strand::drivers

@@ -123,19 +123,6 @@ inline Hid utf8StringType() {
   return type;
 }
 
-inline void writeMatrix(hid_t loc, const std::string& name, const double* data, hsize_t rows,
-                 hsize_t cols) {
-  Hid space = simpleSpace({rows, cols});
-  Hid dset(check(H5Dcreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
-                            H5P_DEFAULT, H5P_DEFAULT),
-                 "cannot create dataset '" + name + "'"),
-           H5Dclose);
-  if (rows * cols > 0)
-    check(H5Dwrite(dset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
-          "cannot write dataset '" + name + "'");
-  dset.close("cannot close dataset '" + name + "'");
-}
-
 // Attribute writers replace an existing attribute of the same name.
 inline void deleteAttributeIfPresent(hid_t loc, const std::string& name) {
   htri_t exists = H5Aexists(loc, name.c_str());
@@ -182,33 +169,35 @@ inline void updateAttribute(hid_t loc, const std::string& name, int value) {
 }
 
 
-// An n-dimensional double or int dataset (row-major), written whole.
-inline void writeArray(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const double* data) {
+// HDF5 file and memory types of the element types we write.
+template <class T> struct H5Types;
+template <> struct H5Types<double> {
+  static hid_t file() { return H5T_IEEE_F64LE; }
+  static hid_t memory() { return H5T_NATIVE_DOUBLE; }
+};
+template <> struct H5Types<int> {
+  static hid_t file() { return H5T_STD_I32LE; }
+  static hid_t memory() { return H5T_NATIVE_INT; }
+};
+
+// An n-dimensional dataset (row-major), written whole.
+template <class T>
+void writeArray(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const T* data) {
   Hid space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "cannot create dataspace"),
             H5Sclose);
-  Hid dset(check(H5Dcreate2(loc, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+  Hid dset(check(H5Dcreate2(loc, name.c_str(), H5Types<T>::file(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                  "cannot create dataset '" + name + "'"),
            H5Dclose);
   hsize_t n = 1;
   for (hsize_t d : dims) n *= d;
   if (n > 0)
-    check(H5Dwrite(dset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+    check(H5Dwrite(dset.get(), H5Types<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
           "cannot write dataset '" + name + "'");
   dset.close("cannot close dataset '" + name + "'");
 }
 
-inline void writeArray(hid_t loc, const std::string& name, const std::vector<hsize_t>& dims, const int* data) {
-  Hid space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "cannot create dataspace"),
-            H5Sclose);
-  Hid dset(check(H5Dcreate2(loc, name.c_str(), H5T_STD_I32LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                 "cannot create dataset '" + name + "'"),
-           H5Dclose);
-  hsize_t n = 1;
-  for (hsize_t d : dims) n *= d;
-  if (n > 0)
-    check(H5Dwrite(dset.get(), H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
-          "cannot write dataset '" + name + "'");
-  dset.close("cannot close dataset '" + name + "'");
+inline void writeMatrix(hid_t loc, const std::string& name, const double* data, hsize_t rows, hsize_t cols) {
+  writeArray(loc, name, {rows, cols}, data);
 }
 
 }  // namespace strand::io::h5

@@ -80,8 +80,7 @@ double mac(const StoredShape& x, const StoredShape& y) {
     return static_cast<double>(d);
   };
   const double re = dot(x.xr, y.mr) + dot(x.xi, y.mi), im = dot(x.xr, y.mi) - dot(x.xi, y.mr);
-  const double xx = dot(x.xr, x.mr) + dot(x.xi, x.mi), yy = dot(y.xr, y.mr) + dot(y.xi, y.mi);
-  return (re * re + im * im) / (xx * yy);
+  return (re * re + im * im) / (x.norm2 * y.norm2);
 }
 
 // Vibration nodes of a mode shape on body 0: interior zeros of its dominant displacement component
