@@ -11,11 +11,10 @@ namespace strand::solvers {
 
 namespace {
 
-// Krylov basis storage: one Vec per column (BVVECS) rather than one contiguous block (BVSVEC,
-// SLEPc's default). Measured on the 2D rotating cantilever (docs/performance.md): 2,000 DOF,
-// 200 sweep points: EPS 1.78 -> 1.35 s, PEP 5.2 -> 3.1 s; 20,000 DOF: EPS 0.089 -> 0.070 s per point.
-// -modal_bv_type overrides it.
-constexpr BVType kBasisType = BVVECS;
+// Krylov bases keep SLEPc's default storage (BVSVEC, one contiguous block, BLAS-2 orthogonalization).
+// With Debian's reference BLAS one Vec per column (BVVECS) was faster; with OpenBLAS (.ci/setup)
+// BVSVEC is: 200-point sweep on 2,000 DOF, EPS 1.24 -> 1.16 s, PEP 2.61 -> 2.09 s; 20,000 DOF,
+// PEP 114 -> 91 ms per point (docs/performance.md). -modal_bv_type overrides it.
 constexpr int kPepMaxDofs = 5000;  // auto: TOAR up to this size, projection above (design section 4)
 
 // Rotate a complex vector x = xr + i xi by a phase so that its real part carries the most energy
@@ -136,7 +135,6 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
   MPI_Comm comm = _asm.dofs().comm();
   if (!_eps) {
     ST st;
-    BV bv;
     PetscCall(EPSCreate(comm, &_eps));
     PetscCall(EPSSetOptionsPrefix(_eps, "modal_"));
     PetscCall(EPSSetProblemType(_eps, EPS_GHEP));
@@ -146,8 +144,6 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
     PetscCall(EPSSetTolerances(_eps, 1e-12, 200));
     PetscCall(EPSGetST(_eps, &st));
     PetscCall(useShiftInvert(st, comm));
-    PetscCall(EPSGetBV(_eps, &bv));
-    PetscCall(BVSetType(bv, kBasisType));
     PetscCall(EPSSetOperators(_eps, _Kf, _Mf));
     PetscCall(EPSSetFromOptions(_eps));
   } else {
@@ -202,7 +198,6 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
   Mat A[3] = {_Kf, _Gf, _Mf};
   if (!_pep) {
     ST st;
-    BV bv;
     PetscCall(PEPCreate(comm, &_pep));
     PetscCall(PEPSetOptionsPrefix(_pep, "modal_"));
     PetscCall(PEPSetType(_pep, PEPTOAR));
@@ -214,13 +209,15 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
     // than 60 over a 200-point sweep, frequencies within 1.3e-8, backward errors < 1e-9 (measured,
     // docs/performance.md).
     PetscCall(PEPSetDimensions(_pep, 2 * _opt.count, std::max(40, 3 * _opt.count + 10), PETSC_DEFAULT));
+    // Scalar scaling of lambda (Fan, Lin, Van Dooren 2004): ||K|| >> omega^2 ||M|| for ANCF. Without it
+    // the eigenvalues were accurate to only 1.6e-9 (mode 5 of verify_rotating_modes against eps,
+    // Re(lambda)/|lambda| 5e-11); with it they agree to 1e-12 (1.6e-12) at about 10 % more time.
+    PetscCall(PEPSetScale(_pep, PEP_SCALE_SCALAR, PETSC_DEFAULT, nullptr, nullptr, PETSC_DEFAULT, PETSC_DEFAULT));
     PetscCall(PEPSetTarget(_pep, 0.0));
     PetscCall(PEPSetWhichEigenpairs(_pep, PEP_TARGET_MAGNITUDE));
     PetscCall(PEPSetTolerances(_pep, 1e-12, 200));
     PetscCall(PEPGetST(_pep, &st));
     PetscCall(useShiftInvert(st, comm));
-    PetscCall(PEPGetBV(_pep, &bv));
-    PetscCall(BVSetType(bv, kBasisType));
     PetscCall(PEPSetOperators(_pep, 3, A));
     PetscCall(PEPSetFromOptions(_pep));
   } else {

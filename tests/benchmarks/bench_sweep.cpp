@@ -82,17 +82,29 @@ int main(int argc, char** argv) {
   PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-count", &count, nullptr));
   const int dofs = 4 * (elements + 1);
   double total = 0.0;
+  PetscLogStage stages[2][3];  // -log_view per variant: sweep, warm, naive x Coriolis off / on
+  for (int c = 0; c < 2; ++c)
+    for (int v = 0; v < 3; ++v) {
+      const char* names[3] = {"sweep", "warm", "naive"};
+      char name[64];
+      std::snprintf(name, sizeof(name), "%s%s", names[v], c ? " coriolis" : "");
+      PetscCall(PetscLogStageRegister(name, &stages[c][v]));
+    }
   for (bool coriolis : {false, true}) {
     const auto sc = scene(elements, points, count, coriolis);
     solvers::SweepResult r;
+    PetscCall(PetscLogStagePush(stages[coriolis][0]));
     PetscCall(solvers::runSweep(PETSC_COMM_WORLD, sc, &r));
+    PetscCall(PetscLogStagePop());
     total += r.seconds;
     line("sweep", coriolis, r.method, points, count, dofs, r.seconds);
     if (!coriolis) {
       auto warm = sc;
       warm.modes.warmStart = true;
       solvers::SweepResult w;
+      PetscCall(PetscLogStagePush(stages[coriolis][1]));
       PetscCall(solvers::runSweep(PETSC_COMM_WORLD, warm, &w));
+      PetscCall(PetscLogStagePop());
       // a warm start that skips a mode shows up as a frequency difference
       double dev = 0.0;
       for (size_t i = 0; i < w.omegaBar.size() && i < r.omegaBar.size(); ++i)
@@ -103,7 +115,9 @@ int main(int argc, char** argv) {
       line("warm", coriolis, w.method, points, count, dofs, w.seconds, extra);
     }
     std::string method;
+    PetscCall(PetscLogStagePush(stages[coriolis][2]));
     const double t = naive(sc, &method);
+    PetscCall(PetscLogStagePop());
     line("naive", coriolis, method, points, count, dofs, t);
   }
   PetscPrintf(PETSC_COMM_WORLD,

@@ -152,12 +152,16 @@ TEST(RotatingModes, QuadraticProblemIsGyroscopicAndAgreesWithEps) {
   const auto proj = rotatingModes(sc, opt);
   ASSERT_EQ(pepOff.omegaBar.size(), eps.omegaBar.size());
   ASSERT_EQ(pepOn.omegaBar.size(), proj.omegaBar.size());
+  double maxOff = 0.0;
   for (size_t k = 0; k < eps.omegaBar.size(); ++k) {
     std::printf("mode %zu eps %.8f pep(no Coriolis) %.8f pep(Coriolis) %.8f projected %.8f\n", k + 1,
                 eps.omegaBar[k], pepOff.omegaBar[k], pepOn.omegaBar[k], proj.omegaBar[k]);
+    // measured 6.1e-11 with PEP_SCALE_SCALAR; unscaled PEP was 1.6e-9 off at mode 5 (ModalSolver.cpp)
     EXPECT_NEAR(pepOff.omegaBar[k] / eps.omegaBar[k], 1.0, 1e-9);
     EXPECT_NEAR(proj.omegaBar[k] / pepOn.omegaBar[k], 1.0, 1e-5);
+    maxOff = std::max(maxOff, std::fabs(pepOff.omegaBar[k] / eps.omegaBar[k] - 1.0));
   }
+  std::printf("max relative difference pep (no Coriolis) vs eps: %.2e\n", maxOff);
   std::printf("max |Re lambda| / |lambda|: pep %.2e projected %.2e\n", pepOn.maxRealPart, proj.maxRealPart);
   EXPECT_LT(pepOn.maxRealPart, 1e-8);
   EXPECT_LT(proj.maxRealPart, 1e-8);
