@@ -1,4 +1,5 @@
 // One progress line: rewritten in place on a terminal, plain lines in batch jobs (rank 0 only).
+// With a completed fraction (time stepping), a batch job gets a line every 5 % only.
 #pragma once
 #include <petscsys.h>
 #include <unistd.h>
@@ -16,8 +17,12 @@ public:
     _active = rank == 0;
     _tty = _active && isatty(fileno(stdout));
   }
-  void update(const std::string& line) {
+  void update(const std::string& line, double fraction = -1.0) {
     if (!_active) return;
+    if (!_tty && fraction >= 0.0) {
+      if (fraction < _nextMark && fraction < 1.0) return;
+      while (_nextMark <= fraction) _nextMark += 0.05;
+    }
     if (_tty) {
       std::printf("\r\033[K%s", line.c_str());
       std::fflush(stdout);
@@ -33,6 +38,7 @@ public:
 
 private:
   bool _active = false, _tty = false, _open = false;
+  double _nextMark = 0.0;
 };
 
 }  // namespace strand::drivers

@@ -2,7 +2,8 @@
 //
 // Bad input is found before any output file exists (scene reader and model build first), so a
 // wrong scene leaves nothing behind. A diverging solve keeps every frame written so far, marks the
-// file with status = "diverged" and exits with code 3 and a message naming the load step.
+// file with status = "diverged" and exits with code 3 and a message naming the load step (statics)
+// or the time and step (dynamics).
 #include <petscsys.h>
 
 #include <cmath>
@@ -16,6 +17,7 @@
 #include "strand/io/Frames.hpp"
 #include "strand/io/OutputWriter.hpp"
 #include "strand/io/SceneReader.hpp"
+#include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/ModalSolver.hpp"
 #include "strand/solvers/Problem.hpp"
 #include "strand/solvers/StaticSolver.hpp"
@@ -55,7 +57,8 @@ public:
     const model::Model& m = _problem.model();
     const bool modal = _mode == RunMode::ForceModes || _scene.analysis == model::Analysis::Modes;
     const std::string out = outputPath(_scene);
-    io::RunInfo info{_scene.file, modal ? "modes" : "static", kVersion, m.dim()};
+    const bool dynamic = !modal && _scene.analysis == model::Analysis::Dynamic;
+    io::RunInfo info{_scene.file, modal ? "modes" : dynamic ? "dynamic" : "static", kVersion, m.dim()};
     _writer = std::make_unique<io::OutputWriter>(_comm, out, info, io::bodyLayouts(m, _scene.output.samplesPerElement));
     say("strand " + std::string(kVersion) + ": " + _scene.file + ": " + std::to_string(m.elements().size()) +
         " elements, " + std::to_string(m.numDofs()) + " coordinates, " + std::to_string(commSize()) + " rank(s)");
@@ -66,8 +69,12 @@ public:
     PetscTime(&t0);
     int code = kExitSuccess;
     std::string failure;
-    writeFrame(X, 0.0);
-    if (!modal || hasLoads(_scene)) code = staticSolve(X, &failure);
+    if (dynamic) {
+      code = dynamicSolve(X, &failure);  // writes the initial frame itself
+    } else {
+      writeFrame(X, 0.0);
+      if (!modal || hasLoads(_scene)) code = staticSolve(X, &failure);
+    }
     if (code == kExitSuccess && modal) modes(X);
     PetscTime(&t1);
     _progress.finish();
@@ -118,6 +125,39 @@ private:
       PetscFunctionReturn(0);
     };
     PetscCallAbort(_comm, solver.solve(X, onStep, failure));
+    return failure->empty() ? kExitSuccess : kExitDiverged;
+  }
+
+  // Time integration from the reference shape at rest; a frame every output_every steps and at the
+  // end, the energy monitor and Newton iterations every step (/series).
+  int dynamicSolve(Vec X, std::string* failure) {
+    const model::DynamicsDesc& d = _scene.dynamics;
+    Vec V;
+    PetscCallAbort(_comm, VecDuplicate(X, &V));
+    PetscCallAbort(_comm, VecSet(V, 0.0));
+    solvers::Dynamics dyn(_problem.assembler(), d);
+    PetscCallAbort(_comm, dyn.setFromOptions());
+    _writer->setAttribute("integrator", dyn.schemeName());
+    _writer->setAttribute("dt", d.dt);
+    auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec) -> PetscErrorCode {
+      PetscFunctionBeginUser;
+      _newtonTotal += s.newtonIterations;
+      const bool last = s.time >= d.tEnd * (1.0 - 1e-12);
+      if (s.step % d.outputEvery == 0 || last) PetscCallCXX(writeFrame(Xs, s.time));
+      PetscCallCXX(_writer->writeScalarSeries("time", s.time));
+      PetscCallCXX(_writer->writeScalarSeries("kinetic_energy", s.kinetic));
+      PetscCallCXX(_writer->writeScalarSeries("strain_energy", s.strain));
+      PetscCallCXX(_writer->writeScalarSeries("potential_energy", s.potential));
+      PetscCallCXX(_writer->writeScalarSeries("dissipated_work", s.dissipated));
+      PetscCallCXX(_writer->writeScalarSeries("energy_balance", s.energy()));
+      PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
+      _progress.update("t " + fmt("%.5g", s.time) + " s  step " + std::to_string(s.step) + "  Newton " +
+                       std::to_string(s.newtonIterations) + "  E " + fmt("%.6e J", s.energy()),
+                       s.time / d.tEnd);
+      PetscFunctionReturn(0);
+    };
+    PetscCallAbort(_comm, dyn.run(X, V, onStep, failure));
+    VecDestroy(&V);
     return failure->empty() ? kExitSuccess : kExitDiverged;
   }
 

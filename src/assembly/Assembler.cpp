@@ -8,7 +8,7 @@
 namespace strand::assembly {
 
 namespace {
-PetscLogEvent evResidual = 0, evJacobian = 0, evMass = 0;
+PetscLogEvent evResidual = 0, evJacobian = 0, evMass = 0, evDynJacobian = 0;
 void registerEvents() {
   static bool done = false;
   if (done) return;
@@ -17,6 +17,7 @@ void registerEvents() {
   PetscLogEventRegister("Strand:Asm:Resid", cid, &evResidual);
   PetscLogEventRegister("Strand:Asm:Jacob", cid, &evJacobian);
   PetscLogEventRegister("Strand:Asm:Mass", cid, &evMass);
+  PetscLogEventRegister("Strand:Asm:DynJac", cid, &evDynJacobian);
   done = true;
 }
 }  // namespace
@@ -24,8 +25,10 @@ void registerEvents() {
 // Per-dimension data and loops. One object per run; element data are computed once.
 struct Assembler::Impl {
   virtual ~Impl() = default;
-  virtual void residual(const double* x, double loadFactor, double* r) const = 0;
+  virtual void residual(const double* x, const double* v, double loadFactor, double* r) const = 0;
   virtual PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const = 0;
+  virtual PetscErrorCode dynamicJacobian(const double* x, const double* v, double shiftV, double shiftA, Mat J,
+                                         const std::vector<char>& fixed) const = 0;
   virtual PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const = 0;
   virtual PetscErrorCode gyroscopic(Mat G, const std::vector<char>& fixed) const = 0;
   virtual double strainEnergy(const double* x) const = 0;
@@ -122,16 +125,24 @@ public:
       }
   }
 
-  void residual(const double* x, double loadFactor, double* r) const override {
+  // Element velocities from a ghosted-local array.
+  void gatherVelocity(int k, const double* v, double* ve) const {
+    const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < D; ++i) ve[a * D + i] = v[lb[a] * D + i];
+  }
+
+  void residual(const double* x, const double* v, double loadFactor, double* r) const override {
     const double omega2 = _model.rotation().omega * _model.rotation().omega;
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
-    double u[N], q0[N], f[N];
+    double u[N], q0[N], f[N], ve[N];
     for (size_t k = 0; k < local.size(); ++k) {
       const model::ElementRef& er = els[local[k]];
       const model::Body& b = _model.bodies()[er.body];
       gatherElement(static_cast<int>(k), x, u, q0);
-      E::force(b.section, geometry(b, er.index), _tab, q0, u, static_cast<const double*>(nullptr), f);
+      if (v) gatherVelocity(static_cast<int>(k), v, ve);
+      E::force(b.section, geometry(b, er.index), _tab, q0, u, v ? ve : static_cast<const double*>(nullptr), f);
       if (omega2 != 0.0) addCentrifugalForce(er, b, q0, u, loadFactor * omega2, f);
       const auto& fe = _bodyLoad[er.body];
       const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
@@ -177,6 +188,30 @@ public:
         }
       const PetscInt g = ml.localBlock + _dofs.ownedBegin();
       PetscCall(MatSetValuesBlocked(J, 1, &g, 1, &g, dQ, ADD_VALUES));
+    }
+    PetscFunctionReturn(0);
+  }
+
+  // Dynamic tangent K + shiftV D + shiftA M (K = df_int/du, D = df_int/dv, consistent mass M):
+  // one pass over the elements for the Newton matrix of an implicit integrator.
+  PetscErrorCode dynamicJacobian(const double* x, const double* v, double shiftV, double shiftA, Mat J,
+                                 const std::vector<char>& fixed) const override {
+    PetscFunctionBeginUser;
+    const auto& els = _model.elements();
+    const auto& local = _dofs.localElements();
+    double u[N], q0[N], ve[N], K[N * N], Dm[N * N];
+    for (size_t k = 0; k < local.size(); ++k) {
+      const model::ElementRef& er = els[local[k]];
+      const model::Body& b = _model.bodies()[er.body];
+      gatherElement(static_cast<int>(k), x, u, q0);
+      if (v) gatherVelocity(static_cast<int>(k), v, ve);
+      const bool damped = v && (b.section.dampAxial != 0.0 || b.section.dampBending != 0.0);
+      E::tangent(b.section, geometry(b, er.index), _tab, q0, u, v ? ve : nullptr, nullptr, K, damped ? Dm : nullptr);
+      if (damped)
+        for (int i = 0; i < N * N; ++i) K[i] += shiftV * Dm[i];
+      addMassBlocks(er, b, shiftA, _identity, K);
+      maskFixed(static_cast<int>(k), fixed, K);
+      PetscCall(MatSetValuesBlocked(J, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], K, ADD_VALUES));
     }
     PetscFunctionReturn(0);
   }
@@ -307,6 +342,7 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
   registerEvents();
   PetscCallAbort(dofs.comm(), dofs.createVector(&_xWork));
   PetscCallAbort(dofs.comm(), VecDuplicate(_xWork, &_rWork));
+  PetscCallAbort(dofs.comm(), VecDuplicate(_xWork, &_vWork));
   // supports and initial coordinates in the ghosted local numbering
   const PetscInt bs = dofs.blockSize();
   PetscInt nLocal = 0;
@@ -337,6 +373,7 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
 Assembler::~Assembler() {
   VecDestroy(&_xWork);
   VecDestroy(&_rWork);
+  VecDestroy(&_vWork);
   VecScatterDestroy(&_toRoot);
   VecDestroy(&_rootVec);
 }
@@ -357,6 +394,16 @@ PetscErrorCode Assembler::beginLocal(Vec X, Vec* xl, const PetscScalar** x) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::beginLocalVelocity(Vec V, Vec* vl, const PetscScalar** v) {
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(V, _vWork));
+  PetscCall(VecGhostUpdateBegin(_vWork, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(_vWork, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostGetLocalForm(_vWork, vl));
+  PetscCall(VecGetArrayRead(*vl, v));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::endLocal(Vec* xl, const PetscScalar** x) {
   PetscFunctionBeginUser;
   PetscCall(VecRestoreArrayRead(*xl, x));
@@ -366,15 +413,29 @@ PetscErrorCode Assembler::endLocal(Vec* xl, const PetscScalar** x) {
 
 PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
   PetscFunctionBeginUser;
+  PetscCall(assembleResidual(X, nullptr, loadFactor, R));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::residual(Vec X, Vec V, Vec R) {
+  PetscFunctionBeginUser;
+  PetscCall(assembleResidual(X, V, 1.0, R));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R) {
+  PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evResidual, 0, 0, 0, 0));
-  Vec xl, rl;
+  Vec xl, rl, vl = nullptr;
   const PetscScalar* x;
+  const PetscScalar* v = nullptr;
   PetscScalar* r;
   PetscCall(beginLocal(X, &xl, &x));
+  if (V) PetscCall(beginLocalVelocity(V, &vl, &v));
   PetscCall(VecGhostGetLocalForm(_rWork, &rl));
   PetscCall(VecSet(rl, 0.0));
   PetscCall(VecGetArray(rl, &r));
-  PetscCallCXX(_impl->residual(x, loadFactor, r));
+  PetscCallCXX(_impl->residual(x, v, loadFactor, r));
   PetscCall(VecRestoreArray(rl, &r));
   PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
   PetscCall(VecGhostUpdateBegin(_rWork, ADD_VALUES, SCATTER_REVERSE));
@@ -387,6 +448,10 @@ PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
     if (_fixedLocal[i]) r[i] = x[i];
   PetscCall(VecRestoreArray(_rWork, &r));
   PetscCall(endLocal(&xl, &x));
+  if (V) {
+    PetscCall(VecRestoreArrayRead(vl, &v));
+    PetscCall(VecGhostRestoreLocalForm(_vWork, &vl));
+  }
   PetscCall(VecCopy(_rWork, R));
   PetscCall(PetscLogEventEnd(evResidual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -407,6 +472,44 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(evJacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscReal shiftA, Mat J) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(evDynJacobian, 0, 0, 0, 0));
+  Vec xl, vl = nullptr;
+  const PetscScalar* x;
+  const PetscScalar* v = nullptr;
+  PetscCall(beginLocal(X, &xl, &x));
+  if (V) PetscCall(beginLocalVelocity(V, &vl, &v));
+  PetscCall(MatZeroEntries(J));
+  PetscCall(_impl->dynamicJacobian(x, v, shiftV, shiftA, J, _fixedLocal));
+  PetscCall(endLocal(&xl, &x));
+  if (V) {
+    PetscCall(VecRestoreArrayRead(vl, &v));
+    PetscCall(VecGhostRestoreLocalForm(_vWork, &vl));
+  }
+  const PetscInt bs = _dofs.blockSize(), n = _dofs.ownedBlocks() * bs, row0 = _dofs.ownedBegin() * bs;
+  for (PetscInt i = 0; i < n; ++i)
+    if (_fixedLocal[i]) PetscCall(MatSetValue(J, row0 + i, row0 + i, 1.0, ADD_VALUES));
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscLogEventEnd(evDynJacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::externalForce(Vec F) {
+  PetscFunctionBeginUser;
+  Vec X0, R1;
+  PetscCall(VecDuplicate(F, &X0));
+  PetscCall(VecDuplicate(F, &R1));
+  PetscCall(VecSet(X0, 0.0));
+  PetscCall(staticResidual(X0, 0.0, F));   // f_int(0)
+  PetscCall(staticResidual(X0, 1.0, R1));  // f_int(0) - f_ext
+  PetscCall(VecAXPY(F, -1.0, R1));
+  PetscCall(VecDestroy(&X0));
+  PetscCall(VecDestroy(&R1));
   PetscFunctionReturn(0);
 }
 

@@ -276,7 +276,12 @@ struct Choice {
 };
 
 const Choice<model::Analysis> kAnalyses[] = {{"static", model::Analysis::Static},
-                                             {"modes", model::Analysis::Modes}};
+                                             {"modes", model::Analysis::Modes},
+                                             {"dynamic", model::Analysis::Dynamic}};
+
+const Choice<model::Integrator> kIntegrators[] = {{"generalized_alpha", model::Integrator::GeneralizedAlpha},
+                                                  {"newmark", model::Integrator::Newmark},
+                                                  {"hht", model::Integrator::Hht}};
 
 const Choice<model::SupportType> kSupportTypes[] = {{"clamped", model::SupportType::Clamped},
                                                     {"pinned", model::SupportType::Pinned},
@@ -540,7 +545,7 @@ public:
     const Field root(rootNode, "", ctx_.file, lineOf(rootNode, 1));
     if (!root.present()) root.fail("the scene is empty; expected a map of scene keys");
     root.expectMap({"analysis", "dimension", "discretization", "bodies", "supports", "junctions", "loads",
-                    "static", "modes", "rotation", "sweep", "output"});
+                    "static", "modes", "rotation", "sweep", "dynamics", "output"});
     scene_.analysis = pick(root.child("analysis"), "analysis", kAnalyses).value;
     scene_.dimension = ctx_.dim = requireIntInRange(root.child("dimension"), 2, 3);
     if (const Field f = root.child("discretization"); f.present()) readDiscretization(f);
@@ -556,6 +561,13 @@ public:
     if (const Field f = root.child("modes"); f.present()) readModes(f);
     if (const Field f = root.child("rotation"); f.present()) readRotation(f);
     if (const Field f = root.child("sweep"); f.present()) readSweep(f);
+    if (const Field f = root.child("dynamics"); f.present()) readDynamics(f);
+    if (scene_.analysis == model::Analysis::Dynamic) {
+      if (!root.child("dynamics").present())
+        root.child("analysis").fail("analysis 'dynamic' needs a 'dynamics' section (dt, t_end)");
+      if (scene_.rotation.present)
+        root.child("rotation").fail("a rotating frame is not supported in dynamic analysis; prescribe the motion instead");
+    }
     if (const Field f = root.child("output"); f.present()) readOutput(f);
     checkCatenaryDefaults();
     return scene_;
@@ -573,6 +585,27 @@ private:
       if (scene_.modes.projectionModes < scene_.modes.count)
         m.fail("must be at least modes.count = " + std::to_string(scene_.modes.count));
     }
+  }
+
+  void readDynamics(const Field& f) {
+    f.expectMap({"integrator", "rho_inf", "hht_alpha", "dt", "t_end", "output_every"});
+    model::DynamicsDesc& d = scene_.dynamics;
+    d.mark = f.mark();
+    if (const Field i = f.child("integrator"); i.present()) d.integrator = pick(i, "integrator", kIntegrators).value;
+    if (const Field r = f.child("rho_inf"); r.present()) {
+      if (d.integrator != model::Integrator::GeneralizedAlpha) r.fail("only used by integrator: generalized_alpha");
+      d.rhoInf = r.number();
+      if (!(d.rhoInf >= 0.0 && d.rhoInf <= 1.0)) r.fail("must lie in [0, 1] (spectral radius at infinite frequency)");
+    }
+    if (const Field a = f.child("hht_alpha"); a.present()) {
+      if (d.integrator != model::Integrator::Hht) a.fail("only used by integrator: hht");
+      d.hhtAlpha = a.number();
+      if (!(d.hhtAlpha >= 0.0 && d.hhtAlpha <= 1.0 / 3.0)) a.fail("must lie in [0, 1/3] (HHT stability range)");
+    }
+    d.dt = requirePositive(f.child("dt"));
+    d.tEnd = requirePositive(f.child("t_end"));
+    if (d.dt > d.tEnd) f.child("dt").fail("larger than t_end");
+    if (const Field k = f.child("output_every"); k.present()) d.outputEvery = requireIntAtLeast(k, 1);
   }
 
   // Dimensionless scales of the first body (seed 003): T* = sqrt(rho A L^4 / (E I)), L.

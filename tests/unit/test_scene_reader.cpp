@@ -595,8 +595,8 @@ TEST_F(SceneFiles, PolylineCsvProblemsNameTheFileKeyAndCsvLine) {
 }
 
 TEST(SceneReader, UnknownChoicesListTheAllowedValues) {
-  EXPECT_TRUE(failsWith(edit(kBase3d, "analysis: static", "analysis: dynamic"), 1, "analysis",
-                        "unknown analysis 'dynamic'; allowed: static, modes"));
+  EXPECT_TRUE(failsWith(edit(kBase3d, "analysis: static", "analysis: transient"), 1, "analysis",
+                        "unknown analysis 'transient'; allowed: static, modes, dynamic"));
   EXPECT_TRUE(failsWith(edit(kBase3d, "element: AncfCable3d", "element: Beam3d"), 5, "bodies[0].element",
                         "unknown element type 'Beam3d'; allowed: AncfCable2d, AncfCable3d"));
   EXPECT_TRUE(failsWith(edit(kBase3d, "kind: line", "kind: helix"), 7, "bodies[0].geometry.kind",
@@ -704,4 +704,29 @@ TEST(SceneReader, DocumentationExamplesParse) {
     }
   }
   EXPECT_GE(examples, 4);
+}
+
+// requirement (issue 3): the dynamics section is read with its defaults, and every wrong value
+// names its line and key.
+TEST(SceneReader, DynamicsSection) {
+  const std::string dyn = edit(kBase2d, "analysis: static", "analysis: dynamic") +
+                          "dynamics: {integrator: generalized_alpha, rho_inf: 0.8, dt: 1e-3, t_end: 2}\n";  // line 13
+  const model::SceneDescription s = parseScene(dyn, "scene.yaml");
+  EXPECT_EQ(s.analysis, model::Analysis::Dynamic);
+  EXPECT_EQ(s.dynamics.integrator, model::Integrator::GeneralizedAlpha);
+  EXPECT_DOUBLE_EQ(s.dynamics.rhoInf, 0.8);
+  EXPECT_DOUBLE_EQ(s.dynamics.dt, 1e-3);
+  EXPECT_DOUBLE_EQ(s.dynamics.tEnd, 2.0);
+  EXPECT_EQ(s.dynamics.outputEvery, 1);
+  EXPECT_TRUE(failsWith(edit(kBase2d, "analysis: static", "analysis: dynamic"), 1, "analysis",
+                        "analysis 'dynamic' needs a 'dynamics' section"));
+  EXPECT_TRUE(failsWith(edit(dyn, "rho_inf: 0.8", "rho_inf: 1.2"), 13, "dynamics.rho_inf", "must lie in [0, 1]"));
+  EXPECT_TRUE(failsWith(edit(dyn, "generalized_alpha", "newmark"), 13, "dynamics.rho_inf",
+                        "only used by integrator: generalized_alpha"));
+  EXPECT_TRUE(failsWith(edit(dyn, "integrator: generalized_alpha, rho_inf: 0.8", "integrator: hht, hht_alpha: 0.5"), 13,
+                        "dynamics.hht_alpha", "must lie in [0, 1/3]"));
+  EXPECT_TRUE(failsWith(edit(dyn, "integrator: generalized_alpha", "integrator: rk4"), 13, "dynamics.integrator",
+                        "unknown integrator 'rk4'; allowed: generalized_alpha, newmark, hht"));
+  EXPECT_TRUE(failsWith(edit(dyn, "dt: 1e-3", "dt: 3"), 13, "dynamics.dt", "larger than t_end"));
+  EXPECT_TRUE(failsWith(edit(dyn, "dt: 1e-3", "dt: -1"), 13, "dynamics.dt", "must be positive"));
 }

@@ -3,3 +3,4 @@ strand_test(NAME verify_cantilever_modes SOURCES verification/test_cantilever_mo
 strand_test(NAME verify_mass_properties SOURCES verification/test_mass_properties.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_rotating_modes SOURCES verification/test_rotating_modes.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_rotating_sweep SOURCES verification/test_rotating_sweep.cpp LABELS verification NPROCS 1 2)
+strand_test(NAME verify_dynamics SOURCES verification/test_dynamics.cpp LABELS verification NPROCS 1 2)

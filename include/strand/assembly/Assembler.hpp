@@ -32,6 +32,15 @@ public:
   PetscErrorCode staticResidual(Vec X, PetscReal loadFactor, Vec R);
   // Its Jacobian dR/dX (unit rows and columns at supports).
   PetscErrorCode staticJacobian(Vec X, PetscReal loadFactor, Mat J);
+  // Dynamic residual R(X, V) = f_int(X, V) - f_ext (elastic + Kelvin-Voigt damping, full loads);
+  // V may be null (no damping force). Supported rows X. The inertia term M A is the integrator's.
+  PetscErrorCode residual(Vec X, Vec V, Vec R);
+  // Newton matrix of an implicit integrator: K + shiftV D + shiftA M with K = df_int/dX,
+  // D = df_int/dV (Kelvin-Voigt), M the consistent mass; unit rows and columns at supports.
+  PetscErrorCode dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscReal shiftA, Mat J);
+  // The constant applied loads f_ext (gravity, distributed and nodal forces) at the reference state;
+  // nodal moments are evaluated there too (they follow the slope, so they are not constant).
+  PetscErrorCode externalForce(Vec F);
   // Consistent mass matrix with point masses; supported rows and columns are zero.
   PetscErrorCode massMatrix(Mat M);
   // Coriolis matrix G = 2 Omega int rho A N^T [e]x N dx of the rotating frame (skew-symmetric);
@@ -51,11 +60,13 @@ private:
   // Copy X into the ghosted work vector, update its ghosts, and expose its local form (read only).
   PetscErrorCode beginLocal(Vec X, Vec* xl, const PetscScalar** x);
   PetscErrorCode endLocal(Vec* xl, const PetscScalar** x);
+  PetscErrorCode beginLocalVelocity(Vec V, Vec* vl, const PetscScalar** v);  // restore: caller
+  PetscErrorCode assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R);
 
   const model::Model& _model;
   const model::DofMap& _dofs;
   std::unique_ptr<Impl> _impl;
-  Vec _xWork = nullptr, _rWork = nullptr;  // ghosted work vectors
+  Vec _xWork = nullptr, _rWork = nullptr, _vWork = nullptr;  // ghosted work vectors
   std::vector<char> _fixedLocal;           // per DOF of the ghosted local form
   std::vector<double> _q0Local;            // initial coordinates, ghosted local form
   std::vector<double> _nodalForceOwned;    // constant nodal forces on owned DOFs

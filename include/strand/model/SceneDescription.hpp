@@ -20,7 +20,7 @@ struct SourceMark {
   std::string where() const { return file + ":" + std::to_string(line) + ": " + key; }
 };
 
-enum class Analysis { Static, Modes };
+enum class Analysis { Static, Modes, Dynamic };
 enum class ElementType { AncfCable2d, AncfCable3d };
 enum class GeometryKind { Line, Arc, Polyline, Catenary };
 
@@ -132,6 +132,20 @@ struct SweepDesc {
   SourceMark mark;
 };
 
+// Time integration (analysis: dynamic). One scheme family, generalized-alpha for second-order
+// systems (Chung & Hulbert 1993, PETSc TSALPHA2): Newmark's average acceleration and HHT are
+// parameter choices of it (docs/user-guide.md, "Dynamics").
+enum class Integrator { GeneralizedAlpha, Newmark, Hht };
+struct DynamicsDesc {
+  Integrator integrator = Integrator::GeneralizedAlpha;
+  double rhoInf = 0.9;    // spectral radius at infinite frequency (generalized_alpha), 1 = no dissipation
+  double hhtAlpha = 0.05; // HHT: alpha in [0, 1/3]; alpha_f = 1 - alpha, gamma = 1/2 + alpha, beta = (1 + alpha)^2 / 4
+  double dt = 0.0;        // fixed step [s] (required)
+  double tEnd = 0.0;      // final time [s] (required)
+  int outputEvery = 1;    // write a frame every k steps (and the last step)
+  SourceMark mark;
+};
+
 struct DiscretizationDesc {
   bool slopeScaling = false;  // slope coordinates times the element length; off: measured more accurate (docs/validation.md)
   int gaussPoints = 5;       // elastic forces; mass uses 4 points (exact)
@@ -154,6 +168,7 @@ struct SceneDescription {
   ModesDesc modes;
   RotationDesc rotation;
   SweepDesc sweep;
+  DynamicsDesc dynamics;
   DiscretizationDesc discretization;
   OutputDesc output;
 };
