@@ -384,30 +384,21 @@ PetscErrorCode Assembler::initialState(Vec X) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::beginLocal(Vec X, Vec* xl, const PetscScalar** x) {
+// Copy `from` into the ghosted work vector `work`, update its ghosts, expose its local form.
+PetscErrorCode Assembler::beginLocal(Vec from, Vec work, Vec* local, const PetscScalar** a) {
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(X, _xWork));
-  PetscCall(VecGhostUpdateBegin(_xWork, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(_xWork, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostGetLocalForm(_xWork, xl));
-  PetscCall(VecGetArrayRead(*xl, x));
+  PetscCall(VecCopy(from, work));
+  PetscCall(VecGhostUpdateBegin(work, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(work, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostGetLocalForm(work, local));
+  PetscCall(VecGetArrayRead(*local, a));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::beginLocalVelocity(Vec V, Vec* vl, const PetscScalar** v) {
+PetscErrorCode Assembler::endLocal(Vec work, Vec* local, const PetscScalar** a) {
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(V, _vWork));
-  PetscCall(VecGhostUpdateBegin(_vWork, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(_vWork, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostGetLocalForm(_vWork, vl));
-  PetscCall(VecGetArrayRead(*vl, v));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode Assembler::endLocal(Vec* xl, const PetscScalar** x) {
-  PetscFunctionBeginUser;
-  PetscCall(VecRestoreArrayRead(*xl, x));
-  PetscCall(VecGhostRestoreLocalForm(_xWork, xl));
+  PetscCall(VecRestoreArrayRead(*local, a));
+  PetscCall(VecGhostRestoreLocalForm(work, local));
   PetscFunctionReturn(0);
 }
 
@@ -430,8 +421,8 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
   const PetscScalar* x;
   const PetscScalar* v = nullptr;
   PetscScalar* r;
-  PetscCall(beginLocal(X, &xl, &x));
-  if (V) PetscCall(beginLocalVelocity(V, &vl, &v));
+  PetscCall(beginLocal(X, _xWork, &xl, &x));
+  if (V) PetscCall(beginLocal(V, _vWork, &vl, &v));
   PetscCall(VecGhostGetLocalForm(_rWork, &rl));
   PetscCall(VecSet(rl, 0.0));
   PetscCall(VecGetArray(rl, &r));
@@ -447,11 +438,8 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
   for (PetscInt i = 0; i < n; ++i)
     if (_fixedLocal[i]) r[i] = x[i];
   PetscCall(VecRestoreArray(_rWork, &r));
-  PetscCall(endLocal(&xl, &x));
-  if (V) {
-    PetscCall(VecRestoreArrayRead(vl, &v));
-    PetscCall(VecGhostRestoreLocalForm(_vWork, &vl));
-  }
+  PetscCall(endLocal(_xWork, &xl, &x));
+  if (V) PetscCall(endLocal(_vWork, &vl, &v));
   PetscCall(VecCopy(_rWork, R));
   PetscCall(PetscLogEventEnd(evResidual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -462,10 +450,10 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   PetscCall(PetscLogEventBegin(evJacobian, 0, 0, 0, 0));
   Vec xl;
   const PetscScalar* x;
-  PetscCall(beginLocal(X, &xl, &x));
+  PetscCall(beginLocal(X, _xWork, &xl, &x));
   PetscCall(MatZeroEntries(J));
   PetscCall(_impl->jacobian(x, loadFactor, J, _fixedLocal));
-  PetscCall(endLocal(&xl, &x));
+  PetscCall(endLocal(_xWork, &xl, &x));
   const PetscInt bs = _dofs.blockSize(), n = _dofs.ownedBlocks() * bs, row0 = _dofs.ownedBegin() * bs;
   for (PetscInt i = 0; i < n; ++i)
     if (_fixedLocal[i]) PetscCall(MatSetValue(J, row0 + i, row0 + i, 1.0, ADD_VALUES));
@@ -481,15 +469,12 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscR
   Vec xl, vl = nullptr;
   const PetscScalar* x;
   const PetscScalar* v = nullptr;
-  PetscCall(beginLocal(X, &xl, &x));
-  if (V) PetscCall(beginLocalVelocity(V, &vl, &v));
+  PetscCall(beginLocal(X, _xWork, &xl, &x));
+  if (V) PetscCall(beginLocal(V, _vWork, &vl, &v));
   PetscCall(MatZeroEntries(J));
   PetscCall(_impl->dynamicJacobian(x, v, shiftV, shiftA, J, _fixedLocal));
-  PetscCall(endLocal(&xl, &x));
-  if (V) {
-    PetscCall(VecRestoreArrayRead(vl, &v));
-    PetscCall(VecGhostRestoreLocalForm(_vWork, &vl));
-  }
+  PetscCall(endLocal(_xWork, &xl, &x));
+  if (V) PetscCall(endLocal(_vWork, &vl, &v));
   const PetscInt bs = _dofs.blockSize(), n = _dofs.ownedBlocks() * bs, row0 = _dofs.ownedBegin() * bs;
   for (PetscInt i = 0; i < n; ++i)
     if (_fixedLocal[i]) PetscCall(MatSetValue(J, row0 + i, row0 + i, 1.0, ADD_VALUES));
@@ -537,9 +522,9 @@ PetscErrorCode Assembler::strainEnergy(Vec X, PetscReal* U) {
   PetscFunctionBeginUser;
   Vec xl;
   const PetscScalar* x;
-  PetscCall(beginLocal(X, &xl, &x));
+  PetscCall(beginLocal(X, _xWork, &xl, &x));
   double local = _impl->strainEnergy(x);
-  PetscCall(endLocal(&xl, &x));
+  PetscCall(endLocal(_xWork, &xl, &x));
   PetscCallMPI(MPI_Allreduce(&local, U, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
   PetscFunctionReturn(0);
 }

@@ -52,7 +52,8 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   KSP ksp;
   PetscCallAbort(comm, TSGetSNES(_ts, &snes));
   PetscCallAbort(comm, SNESSetTolerances(snes, 0.0, 1e-10, 1e-12, 25, PETSC_DEFAULT));
-  PetscCallAbort(comm, SNESSetConvergenceTest(snes, convergenceTest, this, nullptr));
+  // as in statics: the residual has a round-off floor (StaticSolver.cpp)
+  PetscCallAbort(comm, SNESSetConvergenceTest(snes, roundoffFloorConvergence, &_fnorm0, nullptr));
   PetscCallAbort(comm, SNESGetLineSearch(snes, &ls));
   PetscCallAbort(comm, SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
@@ -79,19 +80,6 @@ const char* Dynamics::schemeName() const {
 PetscErrorCode Dynamics::setFromOptions() {
   PetscFunctionBeginUser;
   PetscCall(TSSetFromOptions(_ts));
-  PetscFunctionReturn(0);
-}
-
-// Newton converges when |F| <= rtol |F_0| or the correction is below stol |u| without |F| growing:
-// as in statics, the residual of a position-based beam has a round-off floor (StaticSolver.cpp).
-PetscErrorCode Dynamics::convergenceTest(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
-                                         SNESConvergedReason* reason, void* ctx) {
-  PetscFunctionBeginUser;
-  auto* self = static_cast<Dynamics*>(ctx);
-  if (it == 0) self->_fnorm0 = fnorm;
-  PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
-  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && fnorm > self->_fnorm0) *reason = SNES_CONVERGED_ITERATING;
-  if (!std::isfinite(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;
   PetscFunctionReturn(0);
 }
 
@@ -136,11 +124,11 @@ PetscErrorCode Dynamics::energies(Vec X, Vec V, DynamicsStep* s) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Dynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec U, void* ctx) {
+PetscErrorCode Dynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
-  Vec X, V;
-  PetscCall(TS2GetSolution(ts, &X, &V));
+  Vec V;
+  PetscCall(TS2GetSolution(ts, nullptr, &V));
   DynamicsStep s;
   s.step = static_cast<int>(step);
   s.time = t;

@@ -34,7 +34,7 @@ StaticSolver::StaticSolver(assembly::Assembler& assembler, int loadSteps) : _asm
   // it, so the residual norm first grows; a backtracking line search on ||R|| then stalls at
   // steps of 1e-3 (measured on the elastica tests). Robustness comes from load-step cutbacks.
   PetscCallAbort(dofs.comm(), SNESSetDivergenceTolerance(_snes, -1.0));
-  PetscCallAbort(dofs.comm(), SNESSetConvergenceTest(_snes, convergenceTest, this, nullptr));
+  PetscCallAbort(dofs.comm(), SNESSetConvergenceTest(_snes, roundoffFloorConvergence, &_fnorm0, nullptr));
   SNESLineSearch ls;
   PetscCallAbort(dofs.comm(), SNESGetLineSearch(_snes, &ls));
   PetscCallAbort(dofs.comm(), SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
@@ -69,13 +69,13 @@ PetscErrorCode StaticSolver::view(PetscViewer viewer) const {
 //    correction no longer changes u, which is what the step test detects;
 //  - with a singular tangent the iterates run away, |u| grows and |du|/|u| shrinks while |R| is
 //    1e28 (seen with an unsupported cable): the residual test rejects that.
-PetscErrorCode StaticSolver::convergenceTest(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
-                                             SNESConvergedReason* reason, void* ctx) {
+PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
+                                        SNESConvergedReason* reason, void* ctx) {
   PetscFunctionBeginUser;
-  auto* self = static_cast<StaticSolver*>(ctx);
-  if (it == 0) self->_fnorm0 = fnorm;
+  auto* fnorm0 = static_cast<PetscReal*>(ctx);
+  if (it == 0) *fnorm0 = fnorm;
   PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
-  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && fnorm > self->_fnorm0) *reason = SNES_CONVERGED_ITERATING;
+  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && fnorm > *fnorm0) *reason = SNES_CONVERGED_ITERATING;
   if (!std::isfinite(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;
   PetscFunctionReturn(0);
 }

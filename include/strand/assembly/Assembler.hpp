@@ -57,10 +57,10 @@ public:
   struct Impl;  // dimension-specific kernels (Assembler.cpp)
 
 private:
-  // Copy X into the ghosted work vector, update its ghosts, and expose its local form (read only).
-  PetscErrorCode beginLocal(Vec X, Vec* xl, const PetscScalar** x);
-  PetscErrorCode endLocal(Vec* xl, const PetscScalar** x);
-  PetscErrorCode beginLocalVelocity(Vec V, Vec* vl, const PetscScalar** v);  // restore: caller
+  // Copy `from` into the ghosted work vector (_xWork or _vWork), update its ghosts, and expose its
+  // local form (read only); endLocal restores it.
+  PetscErrorCode beginLocal(Vec from, Vec work, Vec* local, const PetscScalar** a);
+  PetscErrorCode endLocal(Vec work, Vec* local, const PetscScalar** a);
   PetscErrorCode assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R);
 
   const model::Model& _model;

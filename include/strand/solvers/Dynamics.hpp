@@ -64,9 +64,7 @@ private:
   static PetscErrorCode formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx);
   static PetscErrorCode formJacobian(TS, PetscReal t, Vec U, Vec V, Vec A, PetscReal shiftV, PetscReal shiftA, Mat J,
                                      Mat P, void* ctx);
-  static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec U, void* ctx);
-  static PetscErrorCode convergenceTest(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
-                                        SNESConvergedReason* reason, void* ctx);
+  static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec X, void* ctx);
   PetscErrorCode dampingPower(Vec X, Vec V, PetscReal* power);
 
   assembly::Assembler& _asm;
@@ -77,8 +75,8 @@ private:
   bool _damped = false;
   const StepCallback* _onStep = nullptr;
   DynamicsStep _last;
-  double _lastPower = 0.0, _fnorm0 = 0.0;
-  PetscErrorCode _callbackError = 0;
+  double _lastPower = 0.0;
+  PetscReal _fnorm0 = 0.0;  // |F| at the first Newton iterate (roundoffFloorConvergence)
 };
 
 }  // namespace strand::solvers

@@ -41,8 +41,6 @@ public:
 private:
   static constexpr int kMaxCutbacks = 8;
   static PetscErrorCode formFunction(SNES, Vec X, Vec R, void* ctx);
-  static PetscErrorCode convergenceTest(SNES, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
-                                        SNESConvergedReason* reason, void* ctx);
   static PetscErrorCode formJacobian(SNES, Vec X, Mat J, Mat P, void* ctx);
   assembly::Assembler& _asm;
   int _loadSteps;
@@ -51,6 +49,11 @@ private:
   Mat _J = nullptr;
   Vec _R = nullptr;
 };
+
+// SNES convergence test shared by statics and dynamics (a position-based beam's residual has a
+// round-off floor, StaticSolver.cpp): ctx is a PetscReal* that keeps |R| of the first iterate.
+PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
+                                        SNESConvergedReason* reason, void* ctx);
 
 // Direct-solver defaults used by every Strand solver, set only where the user gave no option:
 // PETSc's LU with RCM ordering in serial, MUMPS in parallel (design section 3).
