@@ -364,6 +364,15 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
       if (lb < dofs.ownedBlocks()) _nodalForceOwned[lb * bs + i] = model.nodalForces()[b * bs + i];
     }
   }
+  _noneFixed.assign(nLocal, 0);
+  for (int h = 0; h < static_cast<int>(model.hubMotions().size()); ++h) {
+    const model::HubMotion& hub = model.hubMotions()[h];
+    for (int k = 0; k < static_cast<int>(hub.blocks.size()); ++k) {
+      const PetscInt lb = dofs.localBlock(dofs.globalBlock()[hub.blocks[k]]);
+      if (lb < 0 || lb >= dofs.ownedBlocks()) continue;
+      for (int i = 0; i < model.dim(); ++i) _moved.push_back({lb * bs + i, h, k, i});
+    }
+  }
   if (model.dim() == 2)
     _impl = std::make_unique<CableImpl<2>>(model, dofs, _q0Local);
   else
@@ -404,17 +413,17 @@ PetscErrorCode Assembler::endLocal(Vec work, Vec* local, const PetscScalar** a) 
 
 PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
   PetscFunctionBeginUser;
-  PetscCall(assembleResidual(X, nullptr, loadFactor, R));
+  PetscCall(assembleResidual(X, nullptr, loadFactor, R, SupportRows::Value));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::residual(Vec X, Vec V, Vec R) {
+PetscErrorCode Assembler::residual(Vec X, Vec V, Vec R, SupportRows rows) {
   PetscFunctionBeginUser;
-  PetscCall(assembleResidual(X, V, 1.0, R));
+  PetscCall(assembleResidual(X, V, 1.0, R, rows));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R) {
+PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R, SupportRows rows) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evResidual, 0, 0, 0, 0));
   Vec xl, rl, vl = nullptr;
@@ -435,8 +444,9 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
   PetscCall(VecGetArray(_rWork, &r));
   const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();
   for (PetscInt i = 0; i < n; ++i) r[i] -= loadFactor * _nodalForceOwned[i];
-  for (PetscInt i = 0; i < n; ++i)
-    if (_fixedLocal[i]) r[i] = x[i];
+  if (rows == SupportRows::Value)
+    for (PetscInt i = 0; i < n; ++i)
+      if (_fixedLocal[i]) r[i] = x[i];
   PetscCall(VecRestoreArray(_rWork, &r));
   PetscCall(endLocal(_xWork, &xl, &x));
   if (V) PetscCall(endLocal(_vWork, &vl, &v));
@@ -498,14 +508,47 @@ PetscErrorCode Assembler::externalForce(Vec F) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::massMatrix(Mat M) {
+PetscErrorCode Assembler::massMatrix(Mat M, bool maskSupports) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evMass, 0, 0, 0, 0));
   PetscCall(MatZeroEntries(M));
-  PetscCall(_impl->mass(M, _fixedLocal));
+  PetscCall(_impl->mass(M, maskSupports ? _fixedLocal : _noneFixed));
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(evMass, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) const {
+  PetscFunctionBeginUser;
+  if (_moved.empty()) PetscFunctionReturn(0);
+  PetscScalar *x = nullptr, *v = nullptr, *a = nullptr;
+  if (X) PetscCall(VecGetArray(X, &x));
+  if (V) PetscCall(VecGetArray(V, &v));
+  if (A) PetscCall(VecGetArray(A, &a));
+  const int D = _model.dim();
+  for (const MovedDof& m : _moved) {
+    const model::HubMotion& hub = _model.hubMotions()[m.hub];
+    double u[3], du[3], ddu[3];
+    hub.state(m.block, &_model.initialCoordinates()[hub.blocks[m.block] * D], D, t, u, du, ddu);
+    if (x) x[m.owned] = u[m.component];
+    if (v) v[m.owned] = du[m.component];
+    if (a) a[m.owned] = ddu[m.component];
+  }
+  if (X) PetscCall(VecRestoreArray(X, &x));
+  if (V) PetscCall(VecRestoreArray(V, &v));
+  if (A) PetscCall(VecRestoreArray(A, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::zeroSupportedRows(Vec R) const {
+  PetscFunctionBeginUser;
+  PetscScalar* r;
+  PetscCall(VecGetArray(R, &r));
+  const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();
+  for (PetscInt i = 0; i < n; ++i)
+    if (_fixedLocal[i]) r[i] = 0.0;
+  PetscCall(VecRestoreArray(R, &r));
   PetscFunctionReturn(0);
 }
 

@@ -120,6 +120,7 @@ public:
 
   bool present() const { return node_.IsDefined() && !node_.IsNull(); }
   bool isList() const { return present() && node_.IsSequence(); }
+  bool isMap() const { return present() && node_.IsMap(); }
   bool isScalar(const char* text) const { return present() && node_.IsScalar() && node_.Scalar() == text; }
   const std::string& key() const { return key_; }
   int line() const { return line_; }
@@ -264,6 +265,57 @@ Vec3 readMoment(const Field& f, int dim) {
   if (v.size() != 3 || v[0] != 0.0 || v[1] != 0.0)
     f.fail("a 2D moment acts about z: give a number Mz or [0, 0, Mz]");
   return toVec3(v);
+}
+
+// A time function (model/TimeFunction.hpp): a number (constant) or a map with `function`.
+model::TimeFunction readTimeFunction(const Field& f) {
+  using K = model::TimeFunction::Kind;
+  model::TimeFunction tf;
+  if (f.present() && !f.isList() && !f.isMap()) {
+    tf.value = f.number();
+    return tf;
+  }
+  const std::string kind = f.child("function").text();
+  if (kind == "constant") {
+    f.expectMap({"function", "value"});
+    tf.value = f.child("value").number();
+  } else if (kind == "linear") {
+    f.expectMap({"function", "rate"});
+    tf.kind = K::Linear;
+    tf.rate = f.child("rate").number();
+  } else if (kind == "ramp") {
+    f.expectMap({"function", "start", "end", "value"});
+    tf.kind = K::Ramp;
+    tf.start = f.child("start").present() ? requireNonNegative(f.child("start")) : 0.0;
+    tf.end = f.child("end").number();
+    if (!(tf.end > tf.start)) f.child("end").fail("must be later than start (" + fmt(tf.start) + " s)");
+    tf.value = f.child("value").number();
+  } else if (kind == "sine") {
+    f.expectMap({"function", "amplitude", "frequency", "phase"});
+    tf.kind = K::Sine;
+    tf.amplitude = f.child("amplitude").number();
+    tf.frequency = requirePositive(f.child("frequency"));
+    if (const Field ph = f.child("phase"); ph.present()) tf.phase = ph.number();
+  } else if (kind == "spin_up") {
+    f.expectMap({"function", "omega", "duration"});
+    tf.kind = K::SpinUp;
+    tf.omega = f.child("omega").number();
+    tf.duration = requirePositive(f.child("duration"));
+  } else if (kind == "table") {
+    f.expectMap({"function", "time", "value"});
+    tf.kind = K::Table;
+    for (const Field& t : f.child("time").items()) tf.times.push_back(t.number());
+    for (const Field& v : f.child("value").items()) tf.values.push_back(v.number());
+    if (tf.times.size() < 2) f.child("time").fail("needs at least 2 points");
+    if (tf.values.size() != tf.times.size())
+      f.child("value").fail("needs one value per time (" + std::to_string(tf.times.size()) + ", got " +
+                            std::to_string(tf.values.size()) + ")");
+    for (size_t i = 1; i < tf.times.size(); ++i)
+      if (!(tf.times[i] > tf.times[i - 1])) f.child("time").fail("times must increase (entry " + std::to_string(i) + ")");
+  } else {
+    f.child("function").fail("unknown time function '" + kind + "'; allowed: constant, linear, ramp, sine, spin_up, table");
+  }
+  return tf;
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -567,6 +619,9 @@ public:
         root.child("analysis").fail("analysis 'dynamic' needs a 'dynamics' section (dt, t_end)");
       if (scene_.rotation.present)
         root.child("rotation").fail("a rotating frame is not supported in dynamic analysis; prescribe the motion instead");
+    } else {
+      for (const model::SupportDesc& s : scene_.supports)
+        if (s.hub.present) failAt(s.hub.mark, "a turning hub is a motion in time: only with analysis: dynamic");
     }
     if (const Field f = root.child("output"); f.present()) readOutput(f);
     checkCatenaryDefaults();
@@ -737,7 +792,7 @@ private:
   void readSupports(const Field& f) {
     const int maxDof = 2 * ctx_.dim - 1;
     for (const Field& item : f.items()) {
-      item.expectMap({"body", "node", "type", "dofs"});
+      item.expectMap({"body", "node", "type", "dofs", "hub"});
       model::SupportDesc s;
       s.mark = item.mark();
       s.at = readNodeRef(item);
@@ -757,7 +812,23 @@ private:
           s.dofs.push_back(dof);
         }
       }
+      if (const Field hub = item.child("hub"); hub.present()) readHub(hub, s);
       scene_.supports.push_back(std::move(s));
+    }
+  }
+
+  // hub: {angle: <time function>, center, axis (3D)}: the support turns with a prescribed hub.
+  void readHub(const Field& f, model::SupportDesc& s) {
+    f.expectMap({"angle", "center", "axis"});
+    if (s.type == model::SupportType::Fixed)
+      f.fail("a hub turns a clamped or pinned support, not single coordinates (type: fixed)");
+    s.hub.present = true;
+    s.hub.mark = f.mark();
+    s.hub.angle = readTimeFunction(f.child("angle"));
+    if (const Field c = f.child("center"); c.present()) s.hub.center = readVector(c, ctx_.dim);
+    if (const Field axis = f.child("axis"); axis.present()) {
+      if (ctx_.dim == 2) axis.fail("a 2D hub turns about z; remove 'axis'");
+      s.hub.axis = readDirection(axis, 3);
     }
   }
 

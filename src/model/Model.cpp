@@ -140,6 +140,17 @@ Model::Model(const SceneDescription& scene)
     }
     if (s.type == SupportType::Fixed)
       for (int c : s.dofs) _fixed[(c < _dim ? pb : sb) * _dim + c % _dim] = 1;
+    if (s.hub.present) {
+      HubMotion h{s.hub.center, s.hub.axis, s.hub.angle, {pb}, {0}};
+      if (s.type == SupportType::Clamped) {
+        h.blocks.push_back(sb);
+        h.slope.push_back(1);
+      }
+      for (const HubMotion& other : _hubs)
+        for (int blk : other.blocks)
+          if (blk == pb) throw InputError(s.hub.mark.where() + ": this node is already moved by another hub");
+      _hubs.push_back(std::move(h));
+    }
   }
   // 5. loads
   _nodalForce.assign(numDofs(), 0.0);

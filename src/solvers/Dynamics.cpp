@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "strand/solvers/GeneralizedAlpha.hpp"
 #include "strand/solvers/StaticSolver.hpp"
 
 namespace strand::solvers {
@@ -13,28 +14,31 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   MPI_Comm comm = dofs.comm();
   for (const model::Body& b : assembler.model().bodies())
     _damped = _damped || b.section.dampAxial != 0.0 || b.section.dampBending != 0.0;
+  _moving = !assembler.model().hubMotions().empty();
   PetscCallAbort(comm, dofs.createMatrix(&_M, "dyn_mass_"));
   PetscCallAbort(comm, dofs.createMatrix(&_J, "dyn_"));
-  PetscCallAbort(comm, assembler.massMatrix(_M));
+  PetscCallAbort(comm, assembler.massMatrix(_M, false));
   PetscCallAbort(comm, MatCreateVecs(_M, nullptr, &_fext));
   PetscCallAbort(comm, VecDuplicate(_fext, &_w1));
   PetscCallAbort(comm, VecDuplicate(_fext, &_w2));
+  PetscCallAbort(comm, VecDuplicate(_fext, &_a0));
+  PetscCallAbort(comm, VecDuplicate(_fext, &_supported));
   PetscCallAbort(comm, assembler.externalForce(_fext));
+  {
+    IS free;
+    PetscCallAbort(comm, assembler.freeDofs(&free));
+    PetscCallAbort(comm, VecSet(_supported, 1.0));
+    PetscCallAbort(comm, VecISSet(_supported, free, 0.0));
+    PetscCallAbort(comm, ISDestroy(&free));
+  }
 
+  PetscCallAbort(comm, GeneralizedAlphaRegister());
   PetscCallAbort(comm, TSCreate(comm, &_ts));
   PetscCallAbort(comm, TSSetOptionsPrefix(_ts, "dyn_"));
-  PetscCallAbort(comm, TSSetType(_ts, TSALPHA2));
+  PetscCallAbort(comm, TSSetType(_ts, kTsGeneralizedAlpha));
   PetscCallAbort(comm, TSSetI2Function(_ts, nullptr, formFunction, this));
   PetscCallAbort(comm, TSSetI2Jacobian(_ts, _J, _J, formJacobian, this));
-  switch (desc.integrator) {
-    case model::Integrator::Newmark: PetscCallAbort(comm, TSAlpha2SetParams(_ts, 1.0, 1.0, 0.5, 0.25)); break;
-    case model::Integrator::Hht: {
-      const double a = desc.hhtAlpha;
-      PetscCallAbort(comm, TSAlpha2SetParams(_ts, 1.0, 1.0 - a, 0.5 + a, 0.25 * (1.0 + a) * (1.0 + a)));
-      break;
-    }
-    default: PetscCallAbort(comm, TSAlpha2SetRadius(_ts, desc.rhoInf)); break;
-  }
+  PetscCallAbort(comm, applyScheme());
   PetscCallAbort(comm, TSSetTimeStep(_ts, desc.dt));
   PetscCallAbort(comm, TSSetMaxTime(_ts, desc.tEnd));
   PetscCallAbort(comm, TSSetMaxSteps(_ts, static_cast<PetscInt>(std::ceil(desc.tEnd / desc.dt - 1e-9)) + 1));
@@ -64,9 +68,31 @@ Dynamics::~Dynamics() {
   TSDestroy(&_ts);
   MatDestroy(&_M);
   MatDestroy(&_J);
-  VecDestroy(&_fext);
-  VecDestroy(&_w1);
-  VecDestroy(&_w2);
+  for (Vec* v : {&_fext, &_w1, &_w2, &_a0, &_supported}) VecDestroy(v);
+}
+
+// The scene's scheme parameters for the current TS type (ours, or PETSc's TSALPHA2 when chosen
+// with -dyn_ts_type alpha2).
+PetscErrorCode Dynamics::applyScheme() {
+  PetscFunctionBeginUser;
+  PetscReal am = 1.0, af = 1.0, gamma = 0.5, beta = 0.25;  // Newmark
+  if (_desc.integrator == model::Integrator::Hht) {
+    const double a = _desc.hhtAlpha;
+    af = 1.0 - a;
+    gamma = 0.5 + a;
+    beta = 0.25 * (1.0 + a) * (1.0 + a);
+  } else if (_desc.integrator == model::Integrator::GeneralizedAlpha) {
+    const double rho = _desc.rhoInf;  // Chung & Hulbert Eq. 25
+    am = (2.0 - rho) / (1.0 + rho);
+    af = 1.0 / (1.0 + rho);
+    gamma = 0.5 + am - af;
+    beta = 0.25 * (1.0 + am - af) * (1.0 + am - af);
+  }
+  PetscBool ours;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
+  if (ours) PetscCall(GeneralizedAlphaSetParams(_ts, am, af, gamma, beta));
+  else PetscCall(TSAlpha2SetParams(_ts, am, af, gamma, beta));
+  PetscFunctionReturn(0);
 }
 
 const char* Dynamics::schemeName() const {
@@ -80,15 +106,80 @@ const char* Dynamics::schemeName() const {
 PetscErrorCode Dynamics::setFromOptions() {
   PetscFunctionBeginUser;
   PetscCall(TSSetFromOptions(_ts));
+  PetscBool ours, alpha2;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2));
+  PetscCheck(ours || alpha2, _asm.dofs().comm(), PETSC_ERR_SUP,
+             "-dyn_ts_type: the dynamics integrate a second-order system; use %s (default) or alpha2", kTsGeneralizedAlpha);
+  PetscCheck(ours || !_moving, _asm.dofs().comm(), PETSC_ERR_SUP,
+             "a turning hub (prescribed motion) needs -dyn_ts_type %s", kTsGeneralizedAlpha);
+  if (alpha2) {  // the scene's parameters, then the -dyn_ts_alpha_* options over them
+    PetscCall(applyScheme());
+    PetscCall(TSSetFromOptions(_ts));
+  }
   PetscFunctionReturn(0);
 }
 
-// F = M A + f_int(U, V) - f_ext at the alpha point (supported rows: U).
+PetscErrorCode Dynamics::prescribe(PetscReal t, Vec X, void* ctx) {
+  PetscFunctionBeginUser;
+  PetscCall(static_cast<Dynamics*>(ctx)->_asm.prescribedMotion(t, X, nullptr, nullptr));
+  PetscFunctionReturn(0);
+}
+
+// M a0 = f_ext - f_int(u0, v0) on the free rows, a0 = the prescribed acceleration on supported rows.
+PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
+  PetscFunctionBeginUser;
+  MPI_Comm comm = _asm.dofs().comm();
+  PetscCall(VecSet(A, 0.0));
+  PetscCall(_asm.prescribedMotion(0.0, nullptr, nullptr, A));
+  PetscCall(_asm.residual(X, _damped ? V : nullptr, _w1));
+  PetscCall(MatMultAdd(_M, A, _w1, _w1));
+  PetscCall(_asm.zeroSupportedRows(_w1));
+  PetscCall(VecScale(_w1, -1.0));
+  Mat Mfree;  // masked mass with unit diagonal on supported rows
+  KSP ksp;
+  PetscCall(_asm.dofs().createMatrix(&Mfree, "dyn_mass_"));
+  PetscCall(_asm.massMatrix(Mfree, true));
+  PetscCall(MatDiagonalSet(Mfree, _supported, ADD_VALUES));
+  PetscCall(KSPCreate(comm, &ksp));
+  PetscCall(KSPSetOptionsPrefix(ksp, "dyn_mass_"));
+  PetscCall(KSPSetOperators(ksp, Mfree, Mfree));
+  PetscCall(setDirectSolverDefaults(ksp, comm));
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscCall(KSPSolve(ksp, _w1, _w2));
+  PetscCall(VecAXPY(A, 1.0, _w2));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(MatDestroy(&Mfree));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Dynamics::currentAcceleration(Vec* A) {
+  PetscFunctionBeginUser;
+  PetscBool ours;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
+  *A = _a0;  // TSALPHA2 keeps its acceleration private: only the initial one is known
+  if (ours) PetscCall(GeneralizedAlphaGetAcceleration(_ts, A));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Dynamics::supportForce(Vec F) {
+  PetscFunctionBeginUser;
+  Vec X, V, A;
+  PetscCall(TS2GetSolution(_ts, &X, &V));
+  PetscCall(currentAcceleration(&A));
+  PetscCall(_asm.residual(X, _damped ? V : nullptr, F, assembly::SupportRows::Reaction));
+  PetscCall(MatMultAdd(_M, A, F, F));
+  PetscCall(VecPointwiseMult(F, F, _supported));
+  PetscFunctionReturn(0);
+}
+
+// F = M A + f_int(U, V) - f_ext at the alpha point; zero on supported rows (the TS sets them).
 PetscErrorCode Dynamics::formFunction(TS, PetscReal, Vec U, Vec V, Vec A, Vec F, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
   PetscCall(self->_asm.residual(U, self->_damped ? V : nullptr, F));
   PetscCall(MatMultAdd(self->_M, A, F, F));
+  PetscCall(self->_asm.zeroSupportedRows(F));
   PetscFunctionReturn(0);
 }
 
@@ -100,15 +191,22 @@ PetscErrorCode Dynamics::formJacobian(TS, PetscReal, Vec U, Vec V, Vec, PetscRea
   PetscFunctionReturn(0);
 }
 
-// v . f_d with the Kelvin-Voigt force f_d = f_int(u, v) - f_int(u, 0).
-PetscErrorCode Dynamics::dampingPower(Vec X, Vec V, PetscReal* power) {
+// v . f_d with the Kelvin-Voigt force f_d = f_int(u, v) - f_int(u, 0), and v . f_s with the
+// support force f_s (supportForce).
+PetscErrorCode Dynamics::powers(Vec X, Vec V, PetscReal* damping, PetscReal* support) {
   PetscFunctionBeginUser;
-  *power = 0.0;
-  if (!_damped) PetscFunctionReturn(0);
-  PetscCall(_asm.residual(X, V, _w1));
-  PetscCall(_asm.residual(X, nullptr, _w2));
-  PetscCall(VecAXPY(_w1, -1.0, _w2));
-  PetscCall(VecDot(_w1, V, power));
+  *damping = *support = 0.0;
+  if (_damped) {
+    PetscCall(_asm.residual(X, V, _w1));
+    PetscCall(_asm.residual(X, nullptr, _w2));
+    PetscCall(VecAXPY(_w1, -1.0, _w2));
+    PetscCall(_asm.zeroSupportedRows(_w1));
+    PetscCall(VecDot(_w1, V, damping));
+  }
+  if (_moving) {
+    PetscCall(supportForce(_w1));
+    PetscCall(VecDot(_w1, V, support));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -138,11 +236,14 @@ PetscErrorCode Dynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X, void*
     PetscCall(SNESGetIterationNumber(snes, &s.newtonIterations));
   }
   PetscCall(self->energies(X, V, &s));
-  PetscReal power;
-  PetscCall(self->dampingPower(X, V, &power));
-  s.dissipated = step > 0 ? self->_last.dissipated + 0.5 * (t - self->_last.time) * (power + self->_lastPower) : 0.0;
+  PetscReal pd, ps;
+  PetscCall(self->powers(X, V, &pd, &ps));
+  const double half = 0.5 * (t - self->_last.time);
+  s.dissipated = step > 0 ? self->_last.dissipated + half * (pd + self->_lastDampingPower) : 0.0;
+  s.supportWork = step > 0 ? self->_last.supportWork + half * (ps + self->_lastSupportPower) : 0.0;
   self->_last = s;
-  self->_lastPower = power;
+  self->_lastDampingPower = pd;
+  self->_lastSupportPower = ps;
   if (self->_onStep && *self->_onStep) PetscCall((*self->_onStep)(s, X, V));
   PetscFunctionReturn(0);
 }
@@ -154,7 +255,15 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
   PetscCall(TSSetTime(_ts, 0.0));
   PetscCall(TSSetStepNumber(_ts, 0));
   PetscCall(TSSetTimeStep(_ts, _desc.dt));
+  PetscCall(_asm.prescribedMotion(0.0, X, V, nullptr));
+  PetscCall(initialAcceleration(X, V, _a0));
   PetscCall(TS2SetSolution(_ts, X, V));
+  PetscBool ours;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
+  if (ours) {
+    PetscCall(GeneralizedAlphaSetAcceleration(_ts, _a0));
+    PetscCall(GeneralizedAlphaSetPrescribedMotion(_ts, prescribe, this));
+  }
   PetscCall(TSSolve(_ts, X));
   TSConvergedReason reason;
   PetscCall(TSGetConvergedReason(_ts, &reason));

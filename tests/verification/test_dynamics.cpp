@@ -6,12 +6,14 @@
 //     (Hughes, The Finite Element Method, 1987, Sec. 9.3), so at t = T/4, where cos vanishes,
 //     |X| / |a phi_1| = sin((pi/2) (omega h)^2 / 12) to leading order: asserted within 2 %, and the
 //     rate 2 in h (between 3.6 and 4.4 per halving).
-//     The other members (Newmark with alpha_f = 1, HHT, rho_inf < 1) are only first order here,
-//     because PETSc's TSALPHA2 starts from an O(h) initial acceleration (Dynamics.hpp): that test is
-//     a regression guard of the known limitation (ratio > 1.8 per halving), not a verification.
-//  2. A flexible pendulum (pinned cable released horizontally under gravity): after the start-up
-//     step, the energy balance T + U + P stays within 1e-3 of m g L / 2 for the non-dissipative
-//     members (rho_inf = 1, Newmark), and generalized-alpha with rho_inf = 0.6 dissipates.
+//  2. Every member (Newmark, HHT, rho_inf < 1) on the same problem: the modal amplitude must follow
+//     the scheme's own single-DOF recurrence x'' + omega^2 x = 0 with the consistent start
+//     a0 = -omega^2 x0 (Chung & Hulbert 1993, Eqs. 3-5) to 1e-4, and converge at rate 2.
+//     (PETSc's TSALPHA2 failed this: first order for all but rho_inf = 1, from its O(h) start.)
+//  3. A flexible pendulum (pinned cable released horizontally under gravity): the energy balance
+//     T + U + P stays within 1e-4 of m g L / 2 for the non-dissipative members (rho_inf = 1,
+//     Newmark), generalized-alpha with rho_inf = 0.6 dissipates; with light Kelvin-Voigt damping the
+//     tip position at t = 0.3 s converges at rate 2 in h for every member (changes per halving).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,8 +37,40 @@ model::DynamicsDesc scheme(model::Integrator integrator, double rhoInf, double d
   return d;
 }
 
-// |X(T/4)| / |a phi_1| for a cantilever started at rest in mode 1, `stepsPerPeriod` steps per period.
-double quarterPeriodError(const model::DynamicsDesc& base, int stepsPerPeriod, double* omegaH) {
+// x(t_end) of the scheme's single-DOF recurrence for x'' + omega^2 x = 0, x0 = 1, v0 = 0, in the
+// parameterization of GeneralizedAlpha.hpp; Newton is exact for this linear residual
+// Aa + omega^2 Xa = 0, so solve it for X1 directly.
+double singleDofRecurrence(const model::DynamicsDesc& d, double omega, int steps) {
+  double am = 1, af = 1, g = 0.5, b = 0.25;
+  if (d.integrator == model::Integrator::Hht) {
+    af = 1 - d.hhtAlpha;
+    g = 0.5 + d.hhtAlpha;
+    b = 0.25 * (1 + d.hhtAlpha) * (1 + d.hhtAlpha);
+  } else if (d.integrator == model::Integrator::GeneralizedAlpha) {
+    am = (2 - d.rhoInf) / (1 + d.rhoInf);
+    af = 1 / (1 + d.rhoInf);
+    g = 0.5 + am - af;
+    b = 0.25 * (1 + am - af) * (1 + am - af);
+  }
+  const double h = d.dt, w2 = omega * omega;
+  double x = 1, v = 0, a = -w2;
+  for (int n = 0; n < steps; ++n) {
+    // A1 = c (X1 - x - h v) - k a with c = 1/(b h^2), k = (1 - 2b)/(2b); residual linear in X1
+    const double c = 1 / (b * h * h), k = (1 - 2 * b) / (2 * b);
+    // (1 - am) a + am A1 + w2 ((1 - af) x + af X1) = 0
+    const double x1 = -((1 - am) * a + am * (-c * (x + h * v) - k * a) + w2 * (1 - af) * x) / (am * c + w2 * af);
+    const double a1 = c * (x1 - x - h * v) - k * a;
+    v += h * ((1 - g) * a + g * a1);
+    x = x1;
+    a = a1;
+  }
+  return x;
+}
+
+// x1(T/4) / x1(0) for a cantilever started at rest in mode 1, `stepsPerPeriod` steps per period, with
+// x1 = phi_1.M X the modal amplitude. (The norm |X| would also see the axial vibration that the
+// geometric nonlinearity starts, of size (1e-4)^2 L, undamped at rho_inf = 1: 1e-4 of |X(T/4)|.)
+double quarterPeriodError(const model::DynamicsDesc& base, int stepsPerPeriod, double* omegaH, double* recurrence = nullptr) {
   auto sc = cantilever(2, 8);
   solvers::Problem p(PETSC_COMM_WORLD, sc);
   MPI_Comm comm = PETSC_COMM_WORLD;
@@ -51,8 +85,14 @@ double quarterPeriodError(const model::DynamicsDesc& base, int stepsPerPeriod, d
   PetscCallAbort(comm, VecNorm(r.shapes[0], NORM_INFINITY, &tipScale));
   PetscCallAbort(comm, VecAXPY(X, 1e-4 / tipScale, r.shapes[0]));  // amplitude 1e-4 L
   PetscCallAbort(comm, VecSet(V, 0.0));
+  Mat M;
+  Vec MPhi;
+  PetscCallAbort(comm, p.dofs().createMatrix(&M, nullptr));
+  PetscCallAbort(comm, p.assembler().massMatrix(M));
+  PetscCallAbort(comm, VecDuplicate(X, &MPhi));
+  PetscCallAbort(comm, MatMult(M, r.shapes[0], MPhi));
   PetscReal a0;
-  PetscCallAbort(comm, VecNorm(X, NORM_2, &a0));
+  PetscCallAbort(comm, VecDot(MPhi, X, &a0));
   const double period = 2.0 * M_PI / omega;
   model::DynamicsDesc d = base;
   d.dt = period / stepsPerPeriod;
@@ -63,7 +103,10 @@ double quarterPeriodError(const model::DynamicsDesc& base, int stepsPerPeriod, d
   PetscCallAbort(comm, dyn.run(X, V, {}, &failure));
   EXPECT_EQ(failure, "");
   PetscReal xn;
-  PetscCallAbort(comm, VecNorm(X, NORM_2, &xn));
+  PetscCallAbort(comm, VecDot(MPhi, X, &xn));
+  if (recurrence) *recurrence = singleDofRecurrence(d, omega, stepsPerPeriod / 4);
+  MatDestroy(&M);
+  VecDestroy(&MPhi);
   solvers::destroyModes(&r);
   VecDestroy(&X);
   VecDestroy(&V);
@@ -71,17 +114,18 @@ double quarterPeriodError(const model::DynamicsDesc& base, int stepsPerPeriod, d
 }
 
 struct PendulumRun {
-  double e0 = 0.0, e1 = 0.0, maxDrift = 0.0, eEnd = 0.0, scale = 0.0;
+  double e0 = 0.0, maxDrift = 0.0, eEnd = 0.0, scale = 0.0;
   double tipX = 0.0, tipY = 0.0;
 };
 
 // 1 m cable, 8 elements, pinned at the origin, released horizontally; gravity -9.81 y.
-PendulumRun pendulum(const model::DynamicsDesc& d) {
+PendulumRun pendulum(const model::DynamicsDesc& d, double damping = 0.0) {
   Section s;
-  s.E = 1e8;  // EA = 1e4 N, EI = 1 N m^2: a flexible rope-like cable (axial period 3 ms)
+  s.E = 1e8;  // EA = 1e4 N, EI = 1 N m^2: a flexible rope-like cable (axial period 35 ms)
   auto sc = cantilever(2, 8, 1.0, s);
   sc.supports[0].type = model::SupportType::Pinned;
   sc.loads.gravity = {0, -9.81, 0};
+  sc.bodies[0].dampAxial = sc.bodies[0].dampBending = damping;
   solvers::Problem p(PETSC_COMM_WORLD, sc);
   MPI_Comm comm = PETSC_COMM_WORLD;
   Vec X, V;
@@ -96,8 +140,7 @@ PendulumRun pendulum(const model::DynamicsDesc& d) {
   std::string failure;
   solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec, Vec) -> PetscErrorCode {
     if (st.step == 0) out.e0 = st.energy();
-    if (st.step == 1) out.e1 = st.energy();  // after PETSc's start-up (Dynamics.hpp)
-    if (st.step >= 1) out.maxDrift = std::max(out.maxDrift, std::fabs(st.energy() - out.e1));
+    out.maxDrift = std::max(out.maxDrift, std::fabs(st.energy() - out.e0));
     out.eEnd = st.energy();
     return 0;
   };
@@ -135,21 +178,28 @@ TEST(Dynamics, NonDissipativeGeneralizedAlphaHasTheTrapezoidalPeriodErrorAndOrde
   }
 }
 
-// Regression guard of the known TSALPHA2 start-up limitation (see the file comment).
-TEST(Dynamics, OtherMembersConvergeAtLeastAtFirstOrder) {
+TEST(Dynamics, EveryMemberFollowsItsSingleDofRecurrenceAndIsSecondOrder) {
   struct Case {
     const char* name;
     model::DynamicsDesc d;
   };
+  model::DynamicsDesc hht = scheme(model::Integrator::Hht, 1.0, 0, 0);
+  hht.hhtAlpha = 0.1;
   const Case cases[] = {{"newmark", scheme(model::Integrator::Newmark, 1.0, 0, 0)},
                         {"generalized_alpha rho 0.8", scheme(model::Integrator::GeneralizedAlpha, 0.8, 0, 0)},
-                        {"hht alpha 0.05", scheme(model::Integrator::Hht, 1.0, 0, 0)}};
+                        {"generalized_alpha rho 0", scheme(model::Integrator::GeneralizedAlpha, 0.0, 0, 0)},
+                        {"hht alpha 0.1", hht}};
   for (const Case& c : cases) {
-    double e[3], wh[3];
-    for (int k = 0; k < 3; ++k) e[k] = quarterPeriodError(c.d, 40 << k, &wh[k]);
-    std::printf("%-26s |X(T/4)|/|X0| at 40, 80, 160 steps per period: %.4e %.4e %.4e  ratios %.3f %.3f\n", c.name,
-                e[0], e[1], e[2], e[0] / e[1], e[1] / e[2]);
-    for (int k = 0; k < 2; ++k) EXPECT_GT(e[k] / e[k + 1], 1.4) << c.name;
+    double e[3], wh[3], rec[3];
+    for (int k = 0; k < 3; ++k) e[k] = quarterPeriodError(c.d, 40 << k, &wh[k], &rec[k]);
+    std::printf("%-26s |X(T/4)|/|X0| at 40, 80, 160 steps per period: %.4e %.4e %.4e  ratios %.3f %.3f;"
+                " recurrence %.4e %.4e %.4e\n",
+                c.name, e[0], e[1], e[2], e[0] / e[1], e[1] / e[2], rec[0], rec[1], rec[2]);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(e[k] / rec[k], 1.0, 1e-4) << c.name;
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_GT(e[k] / e[k + 1], 3.6) << c.name;
+      EXPECT_LT(e[k] / e[k + 1], 4.4) << c.name;
+    }
   }
 }
 
@@ -158,13 +208,40 @@ TEST(Dynamics, FlexiblePendulumEnergyIsConservedWithoutNumericalDissipation) {
   const PendulumRun nm = pendulum(scheme(model::Integrator::Newmark, 1.0, dt, tEnd));
   const PendulumRun a1 = pendulum(scheme(model::Integrator::GeneralizedAlpha, 1.0, dt, tEnd));
   const PendulumRun a6 = pendulum(scheme(model::Integrator::GeneralizedAlpha, 0.6, dt, tEnd));
-  std::printf("energy drift after step 1 / (m g L/2): newmark %.2e, alpha rho 1 %.2e, alpha rho 0.6 %.2e (end %.3e);"
-              " first step: %.2e %.2e %.2e\n",
-              nm.maxDrift / nm.scale, a1.maxDrift / a1.scale, a6.maxDrift / a6.scale, (a6.eEnd - a6.e1) / a6.scale,
-              (nm.e1 - nm.e0) / nm.scale, (a1.e1 - a1.e0) / a1.scale, (a6.e1 - a6.e0) / a6.scale);
+  std::printf("energy drift / (m g L/2): newmark %.2e, alpha rho 1 %.2e, alpha rho 0.6 %.2e (end %.3e)\n",
+              nm.maxDrift / nm.scale, a1.maxDrift / a1.scale, a6.maxDrift / a6.scale, (a6.eEnd - a6.e0) / a6.scale);
   std::printf("tip at t = 1 s: newmark (%.6f, %.6f), alpha rho 1 (%.6f, %.6f), rho 0.6 (%.6f, %.6f)\n", nm.tipX, nm.tipY,
               a1.tipX, a1.tipY, a6.tipX, a6.tipY);
-  EXPECT_LT(nm.maxDrift / nm.scale, 1e-3);
-  EXPECT_LT(a1.maxDrift / a1.scale, 1e-3);
-  EXPECT_LT(a6.eEnd, a6.e1);
+  EXPECT_LT(nm.maxDrift / nm.scale, 1e-4);
+  EXPECT_LT(a1.maxDrift / a1.scale, 1e-4);
+  EXPECT_LT(a6.eEnd, a6.e0);
+}
+
+TEST(Dynamics, FlexiblePendulumTipConvergesAtSecondOrderForEveryMember) {
+  // Kelvin-Voigt damping 3e-4 s (damping ratio ~0.4 at the highest bending frequency, ~2800 rad/s)
+  // lets the element-scale modes that the release from rest excites decay physically. Undamped,
+  // they are unresolved at these steps (omega_max h > 1) and the measured rates scatter between 0.8
+  // and 3 (docs/validation.md); damped, every member gives 2.00.
+  const double tEnd = 0.3, h0 = 1e-3, damping = 3e-4;
+  model::DynamicsDesc hht = scheme(model::Integrator::Hht, 1.0, 0, tEnd);
+  hht.hhtAlpha = 0.1;
+  const model::DynamicsDesc members[] = {scheme(model::Integrator::Newmark, 1.0, 0, tEnd),
+                                         scheme(model::Integrator::GeneralizedAlpha, 1.0, 0, tEnd),
+                                         scheme(model::Integrator::GeneralizedAlpha, 0.6, 0, tEnd), hht};
+  const char* names[] = {"newmark", "alpha rho 1", "alpha rho 0.6", "hht 0.1"};
+  for (int m = 0; m < 4; ++m) {
+    model::DynamicsDesc d = members[m];
+    double tip[4][2], err[3];
+    for (int k = 0; k < 4; ++k) {
+      d.dt = h0 / (1 << k);
+      const PendulumRun r = pendulum(d, damping);
+      tip[k][0] = r.tipX;
+      tip[k][1] = r.tipY;
+    }
+    // differences of successive halvings: e_k = |tip(h_k) - tip(h_k / 2)| ~ C h_k^p
+    for (int k = 0; k < 3; ++k) err[k] = std::hypot(tip[k][0] - tip[k + 1][0], tip[k][1] - tip[k + 1][1]);
+    std::printf("pendulum %-14s tip change per halving from h = %.1e: %.3e %.3e %.3e  rates %.2f %.2f\n", names[m], h0,
+                err[0], err[1], err[2], std::log2(err[0] / err[1]), std::log2(err[1] / err[2]));
+    for (int k = 0; k < 2; ++k) EXPECT_NEAR(std::log2(err[k] / err[k + 1]), 2.0, 0.1) << names[m];
+  }
 }

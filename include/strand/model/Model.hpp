@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "strand/elements/CableSection.hpp"
+#include "strand/model/HubMotion.hpp"
 #include "strand/model/SceneDescription.hpp"
 
 namespace strand::model {
@@ -65,6 +66,8 @@ public:
   // unknowns are displacements u = q - q0.
   const std::vector<double>& initialCoordinates() const { return _q0; }
   const std::vector<char>& fixedDofs() const { return _fixed; }          // 1 where a support holds the DOF
+  // Supports on turning hubs (their DOFs are among fixedDofs; the others stay at zero displacement).
+  const std::vector<HubMotion>& hubMotions() const { return _hubs; }
   const std::vector<double>& nodalForces() const { return _nodalForce; } // constant nodal forces per DOF
   const std::vector<NodalMomentLoad>& nodalMoments() const { return _moments; }
   const Vec3& gravity() const { return _gravity; }  // also acts on point masses
@@ -80,6 +83,7 @@ private:
   std::vector<double> _q0, _nodalForce;
   std::vector<char> _fixed;
   std::vector<NodalMomentLoad> _moments;
+  std::vector<HubMotion> _hubs;
   Vec3 _gravity{};
   RotationDesc _rotation;
   ReferenceScales _scales;

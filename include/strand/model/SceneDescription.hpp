@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "strand/model/TimeFunction.hpp"
+
 namespace strand::model {
 
 using Vec3 = std::array<double, 3>;
@@ -65,11 +67,23 @@ struct NodeRef {
   SourceMark mark;
 };
 
+// A support that turns with a hub (rheonomic): the held coordinates follow the rigid rotation by
+// the angle psi(t) about `axis` through `center`, r(t) = c + R(psi) (r0 - c), r'(t) = R(psi) r0'.
+// Dynamic analysis only; the hub of seed 001 with the spin-up profile Eq. 57 is psi = spin_up.
+struct HubDesc {
+  bool present = false;
+  Vec3 center{};
+  Vec3 axis{0.0, 0.0, 1.0};  // unit vector; 2D: z
+  TimeFunction angle;        // psi(t) [rad]
+  SourceMark mark;
+};
+
 enum class SupportType { Clamped, Pinned, Fixed };
 struct SupportDesc {
   NodeRef at;
   SupportType type = SupportType::Clamped;
   std::vector<int> dofs;  // Fixed: node coordinate indices 0 .. 2*dim-1 (position first, then slope)
+  HubDesc hub;            // clamped / pinned only
   SourceMark mark;
 };
 

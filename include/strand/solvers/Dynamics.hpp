@@ -1,9 +1,11 @@
 // Time integration of M a + f_int(u, v) - f_ext = 0 on PETSc TS (options prefix "dyn_").
 //
 // The scheme is generalized-alpha for second-order systems (Chung & Hulbert, J. Appl. Mech. 60
-// (1993) 371; PETSc TSALPHA2), fixed step. The residual PETSc asks for at the alpha point
-// (t_n + alpha_f h, u_a, v_a, a_a) is F = M a_a + f_int(u_a, v_a) - f_ext (design section 3);
-// the Newton matrix is K + shiftV D + shiftA M, assembled in one pass (Assembler::dynamicJacobian).
+// (1993) 371), fixed step, on our registered TS "strand_alpha" (GeneralizedAlpha.hpp) started from
+// the consistent acceleration M a0 = f_ext - f_int(u0, v0) (PETSc's TSALPHA2 estimates it, an O(h)
+// error measured in docs/validation.md; -dyn_ts_type alpha2 still selects it for comparison). The
+// residual at the alpha point is F = M a_a + f_int(u_a, v_a) - f_ext (design section 3); the Newton
+// matrix is K + shiftV D + shiftA M, assembled in one pass (Assembler::dynamicJacobian).
 // Parameter choices of the same scheme (docs/user-guide.md, "Dynamics"):
 //   generalized_alpha  rho_inf in [0, 1]: alpha_m = (2 - rho)/(1 + rho), alpha_f = 1/(1 + rho),
 //                      gamma = 1/2 + alpha_m - alpha_f, beta = (1 + alpha_m - alpha_f)^2 / 4;
@@ -11,17 +13,18 @@
 //   newmark            average acceleration: alpha_m = alpha_f = 1, gamma = 1/2, beta = 1/4;
 //   hht                Hilber-Hughes-Taylor: alpha_m = 1, alpha_f = 1 - alpha, gamma = 1/2 + alpha,
 //                      beta = (1 + alpha)^2 / 4.
-// Supports are eliminated (unit rows, Assembler).
-// Known limitation (measured in tests/verification/test_dynamics.cpp): PETSc 3.18's TSALPHA2 takes
-// the initial acceleration from two backward-Euler half steps (alpha2.c, TSAlpha_Restart), an
-// O(h) error. The non-dissipative member rho_inf = 1 keeps order 2 and Newmark's exact period
-// error; Newmark (alpha_f = 1), HHT and rho_inf < 1 fall to order 1 in the first-mode test (the
-// first step adds 1.8 % energy at omega h = 0.16). The fix is our own generalized-alpha TS with
-// the consistent start M a_0 = -R(u_0, v_0); until then prefer rho_inf = 1.
+// All are second order (tests/verification/test_dynamics.cpp).
+//
+// Supports are eliminated: their residual rows are zero and their Jacobian rows unit, and the TS
+// sets their values at the end of each step (hub supports turn, model/HubMotion.hpp; the others
+// stay at zero). The mass matrix keeps the columns of supported DOFs, so a turning hub's
+// acceleration loads the body.
 //
 // Energy monitor (every step): kinetic T = v.M v / 2, strain U, potential of the constant loads
-// P = -f_ext.u, work dissipated by Kelvin-Voigt damping W_d = int v.f_d dt (trapezoidal rule,
-// f_d = f_int(u, v) - f_int(u, 0)); the balance E = T + U + P + W_d is constant for the exact motion.
+// P = -f_ext.u, work dissipated by Kelvin-Voigt damping W_d = int v.f_d dt (f_d = f_int(u, v) -
+// f_int(u, 0)) and work done by the supports on the body W_s = int v.f_s dt (f_s = M a + f_int -
+// f_ext on supported rows; non-zero only for moving supports), both by the trapezoidal rule. The
+// balance E = T + U + P + W_d - W_s is constant for the exact motion.
 #pragma once
 #include <petscts.h>
 
@@ -37,8 +40,8 @@ struct DynamicsStep {
   int step = 0;      // 0: initial state
   double time = 0.0;
   int newtonIterations = 0;
-  double kinetic = 0.0, strain = 0.0, potential = 0.0, dissipated = 0.0;
-  double energy() const { return kinetic + strain + potential + dissipated; }
+  double kinetic = 0.0, strain = 0.0, potential = 0.0, dissipated = 0.0, supportWork = 0.0;
+  double energy() const { return kinetic + strain + potential + dissipated - supportWork; }
 };
 
 class Dynamics {
@@ -58,6 +61,9 @@ public:
   PetscErrorCode run(Vec X, Vec V, const StepCallback& onStep, std::string* failure);
   // Energies of a state (all ranks).
   PetscErrorCode energies(Vec X, Vec V, DynamicsStep* s);
+  // The force the supports exert on the body, f_s = M a + f_int - f_ext on supported rows (zero
+  // elsewhere), at the current state of the integration (inside a step callback, or after run()).
+  PetscErrorCode supportForce(Vec F);
   const char* schemeName() const;
 
 private:
@@ -65,17 +71,23 @@ private:
   static PetscErrorCode formJacobian(TS, PetscReal t, Vec U, Vec V, Vec A, PetscReal shiftV, PetscReal shiftA, Mat J,
                                      Mat P, void* ctx);
   static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec X, void* ctx);
-  PetscErrorCode dampingPower(Vec X, Vec V, PetscReal* power);
+  static PetscErrorCode prescribe(PetscReal t, Vec X, void* ctx);
+  PetscErrorCode applyScheme();
+  PetscErrorCode initialAcceleration(Vec X, Vec V, Vec A);
+  PetscErrorCode currentAcceleration(Vec* A);
+  PetscErrorCode powers(Vec X, Vec V, PetscReal* damping, PetscReal* support);
 
   assembly::Assembler& _asm;
   model::DynamicsDesc _desc;
   TS _ts = nullptr;
-  Mat _M = nullptr, _J = nullptr;
+  Mat _M = nullptr, _J = nullptr;  // mass with supported columns kept; Newton matrix
   Vec _fext = nullptr, _w1 = nullptr, _w2 = nullptr;
-  bool _damped = false;
+  Vec _supported = nullptr;  // 1 on supported rows, 0 elsewhere
+  Vec _a0 = nullptr;         // initial acceleration (kept for TS types without an acceleration state)
+  bool _damped = false, _moving = false;
   const StepCallback* _onStep = nullptr;
   DynamicsStep _last;
-  double _lastPower = 0.0;
+  double _lastDampingPower = 0.0, _lastSupportPower = 0.0;
   PetscReal _fnorm0 = 0.0;  // |F| at the first Newton iterate (roundoffFloorConvergence)
 };
 

@@ -1,0 +1,37 @@
+// Scalar functions of time for prescribed motions and loads, with exact first and second
+// derivatives (the integrator needs the prescribed velocity and acceleration at t = 0).
+//
+//   constant  f = value
+//   linear    f = rate t
+//   ramp      f = 0 before start, linear to `value` at end, `value` after
+//   sine      f = amplitude sin(2 pi frequency t + phase)
+//   spin_up   hub angle of seed 001 Eq. 57 (Omega0 = omega, T = duration):
+//               dpsi/dt = Omega0 (t/T - sin(2 pi t/T) / (2 pi))  for t <= T,  Omega0 after;
+//               psi = Omega0 (t^2/(2T) + T/(4 pi^2) (cos(2 pi t/T) - 1)) for t <= T,
+//               psi = Omega0 (t - T/2) after (continuous angle, rate and acceleration)
+//   table     piecewise linear through (time[i], value[i]), constant outside
+#pragma once
+#include <string>
+#include <vector>
+
+namespace strand::model {
+
+struct TimeValue {
+  double f = 0.0, df = 0.0, ddf = 0.0;  // value and its first two time derivatives
+};
+
+struct TimeFunction {
+  enum class Kind { Constant, Linear, Ramp, Sine, SpinUp, Table };
+  Kind kind = Kind::Constant;
+  double value = 0.0;                      // constant, ramp
+  double rate = 0.0;                       // linear
+  double start = 0.0, end = 0.0;           // ramp [s]
+  double amplitude = 0.0, frequency = 0.0, phase = 0.0;  // sine [Hz, rad]
+  double omega = 0.0, duration = 0.0;      // spin_up [rad/s, s]
+  std::vector<double> times, values;       // table
+
+  TimeValue at(double t) const;
+  std::string name() const;
+};
+
+}  // namespace strand::model

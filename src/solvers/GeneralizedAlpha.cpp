@@ -1,0 +1,255 @@
+// The "strand_alpha" TS: generalized-alpha for second-order systems (GeneralizedAlpha.hpp).
+// Uses PETSc's private TS header the way PETSc's own implementations do (ts->ops, ts->data).
+#include "strand/solvers/GeneralizedAlpha.hpp"
+
+#include <petsc/private/tsimpl.h>
+
+namespace strand::solvers {
+
+namespace {
+
+struct AlphaData {
+  PetscReal alphaM = 1.0, alphaF = 1.0, gamma = 0.5, beta = 0.25;  // Newmark until set
+  PetscReal stageTime = 0.0, shiftV = 0.0, shiftA = 0.0;
+  Vec X0 = nullptr, V0 = nullptr, A0 = nullptr;  // start of the step
+  Vec V1 = nullptr, A1 = nullptr;                // end of the step (X1 is the SNES iterate)
+  Vec Xa = nullptr, Va = nullptr, Aa = nullptr;  // alpha point
+  Vec A = nullptr;                               // acceleration at ts->ptime (the state)
+  PrescribeFn prescribe = nullptr;
+  void* prescribeCtx = nullptr;
+};
+
+AlphaData* dataOf(TS ts) { return static_cast<AlphaData*>(ts->data); }
+
+PetscErrorCode checkType(TS ts) {
+  PetscBool match;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ts), kTsGeneralizedAlpha, &match));
+  PetscCheck(match, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_WRONG,
+             "TS is not of type %s", kTsGeneralizedAlpha);
+  PetscFunctionReturn(0);
+}
+
+// A1, V1 from X1 (Newmark relations), then the alpha-point state.
+PetscErrorCode stageVectors(TS ts, Vec X1) {
+  AlphaData* d = dataOf(ts);
+  const PetscReal h = ts->time_step, b = d->beta, g = d->gamma;
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(d->A1, -1.0, d->X0, X1));  // A1 = (X1 - X0 - h V0) / (b h^2) - (1 - 2b)/(2b) A0
+  PetscCall(VecAXPY(d->A1, -h, d->V0));
+  PetscCall(VecAXPBY(d->A1, -(1.0 - 2.0 * b) / (2.0 * b), 1.0 / (b * h * h), d->A0));
+  PetscCall(VecWAXPY(d->V1, (1.0 - g) / g, d->A0, d->A1));  // V1 = V0 + h ((1 - g) A0 + g A1)
+  PetscCall(VecAYPX(d->V1, h * g, d->V0));
+  PetscCall(VecWAXPY(d->Xa, -1.0, d->X0, X1));  // Xa = X0 + alpha_f (X1 - X0)
+  PetscCall(VecAYPX(d->Xa, d->alphaF, d->X0));
+  PetscCall(VecWAXPY(d->Va, -1.0, d->V0, d->V1));
+  PetscCall(VecAYPX(d->Va, d->alphaF, d->V0));
+  PetscCall(VecWAXPY(d->Aa, -1.0, d->A0, d->A1));  // Aa = A0 + alpha_m (A1 - A0)
+  PetscCall(VecAYPX(d->Aa, d->alphaM, d->A0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode snesFunction(SNES, Vec X1, Vec F, TS ts) {
+  AlphaData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  PetscCall(stageVectors(ts, X1));
+  PetscCall(TSComputeI2Function(ts, d->stageTime, d->Xa, d->Va, d->Aa, F));
+  PetscCall(VecScale(F, 1.0 / d->alphaF));  // so that dF/dX1 = dF/dXa + shiftV dF/dVa + shiftA dF/dAa
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode snesJacobian(SNES, Vec, Mat J, Mat P, TS ts) {
+  AlphaData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  PetscCall(TSComputeI2Jacobian(ts, d->stageTime, d->Xa, d->Va, d->Aa, d->shiftV, d->shiftA, J, P));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode step(TS ts) {
+  AlphaData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  PetscCheck(d->A, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ORDER,
+             "%s needs the initial acceleration: call GeneralizedAlphaSetAcceleration() before TSSolve()",
+             kTsGeneralizedAlpha);
+  PetscCall(VecCopy(ts->vec_sol, d->X0));
+  PetscCall(VecCopy(ts->vec_dot, d->V0));
+  PetscCall(VecCopy(d->A, d->A0));
+  PetscInt rejections = 0;
+  for (;;) {
+    const PetscReal h = ts->time_step;
+    d->stageTime = ts->ptime + d->alphaF * h;
+    d->shiftV = d->gamma / (d->beta * h);
+    d->shiftA = d->alphaM / (d->alphaF * d->beta * h * h);
+    Vec X1 = ts->vec_sol;  // predictor: constant acceleration
+    PetscCall(VecAXPY(X1, h, d->V0));
+    PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
+    if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, d->prescribeCtx));
+    PetscCall(TSPreStage(ts, d->stageTime));
+    PetscCall(SNESSolve(ts->snes, nullptr, X1));
+    PetscInt nits, lits;
+    PetscCall(SNESGetIterationNumber(ts->snes, &nits));
+    PetscCall(SNESGetLinearSolveIterations(ts->snes, &lits));
+    ts->snes_its += nits;
+    ts->ksp_its += lits;
+    PetscBool accept;
+    PetscCall(TSAdaptCheckStage(ts->adapt, ts, ts->ptime + h, X1, &accept));
+    if (accept) {
+      PetscCall(stageVectors(ts, X1));  // V1, A1 of the converged X1
+      PetscCall(VecCopy(d->V1, ts->vec_dot));
+      PetscCall(VecCopy(d->A1, d->A));
+      // the next step (fixed unless an adaptor is chosen; stretched or cut to land on the final time)
+      PetscReal next = h;
+      PetscCall(TSAdaptChoose(ts->adapt, ts, h, nullptr, &next, &accept));
+      ts->ptime += h;
+      ts->time_step = next;
+      break;
+    }
+    PetscCall(VecCopy(d->X0, ts->vec_sol));  // reject: back to the start of the step
+    ts->reject++;
+    if (ts->reason) break;  // too many Newton failures (TSSetMaxSNESFailures)
+    if (++rejections > ts->max_reject && ts->max_reject >= 0) {
+      ts->reason = TS_DIVERGED_STEP_REJECTED;
+      break;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode rollBack(TS ts) {
+  AlphaData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(d->X0, ts->vec_sol));
+  PetscCall(VecCopy(d->V0, ts->vec_dot));
+  PetscCall(VecCopy(d->A0, d->A));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode setUp(TS ts) {
+  AlphaData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  PetscCheck(ts->vec_dot, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ORDER,
+             "%s integrates second-order systems: call TS2SetSolution()", kTsGeneralizedAlpha);
+  for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->V1, &d->A1, &d->Xa, &d->Va, &d->Aa})
+    if (!*v) PetscCall(VecDuplicate(ts->vec_sol, v));
+  PetscCall(TSGetSNES(ts, &ts->snes));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode reset(TS ts) {
+  AlphaData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->V1, &d->A1, &d->Xa, &d->Va, &d->Aa, &d->A}) PetscCall(VecDestroy(v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode destroy(TS ts) {
+  PetscFunctionBeginUser;
+  PetscCall(reset(ts));
+  delete dataOf(ts);
+  ts->data = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode setFromOptions(TS ts, PetscOptionItems* PetscOptionsObject) {
+  AlphaData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  PetscOptionsHeadBegin(PetscOptionsObject, "Strand generalized-alpha options");
+  PetscReal radius = 1.0;
+  PetscBool set;
+  PetscCall(PetscOptionsReal("-ts_strand_alpha_radius", "Spectral radius at infinite frequency", "GeneralizedAlphaSetRadius",
+                             radius, &radius, &set));
+  if (set) PetscCall(GeneralizedAlphaSetRadius(ts, radius));
+  PetscCall(PetscOptionsReal("-ts_strand_alpha_alpha_m", "alpha_m", "GeneralizedAlphaSetParams", d->alphaM, &d->alphaM, nullptr));
+  PetscCall(PetscOptionsReal("-ts_strand_alpha_alpha_f", "alpha_f", "GeneralizedAlphaSetParams", d->alphaF, &d->alphaF, nullptr));
+  PetscCall(PetscOptionsReal("-ts_strand_alpha_gamma", "gamma", "GeneralizedAlphaSetParams", d->gamma, &d->gamma, nullptr));
+  PetscCall(PetscOptionsReal("-ts_strand_alpha_beta", "beta", "GeneralizedAlphaSetParams", d->beta, &d->beta, nullptr));
+  PetscOptionsHeadEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode view(TS ts, PetscViewer viewer) {
+  AlphaData* d = dataOf(ts);
+  PetscBool ascii;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(viewer), PETSCVIEWERASCII, &ascii));
+  if (ascii)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  alpha_m=%g alpha_f=%g gamma=%g beta=%g (consistent start)\n",
+                                     static_cast<double>(d->alphaM), static_cast<double>(d->alphaF),
+                                     static_cast<double>(d->gamma), static_cast<double>(d->beta)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode create(TS ts) {
+  PetscFunctionBeginUser;
+  ts->ops->reset = reset;
+  ts->ops->destroy = destroy;
+  ts->ops->view = view;
+  ts->ops->setup = setUp;
+  ts->ops->setfromoptions = setFromOptions;
+  ts->ops->step = step;
+  ts->ops->rollback = rollBack;
+  ts->ops->snesfunction = snesFunction;
+  ts->ops->snesjacobian = snesJacobian;
+  ts->default_adapt_type = TSADAPTNONE;
+  ts->usessnes = PETSC_TRUE;
+  ts->data = new AlphaData();
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode GeneralizedAlphaRegister() {
+  static bool registered = false;
+  PetscFunctionBeginUser;
+  if (!registered) PetscCall(TSRegister(kTsGeneralizedAlpha, create));
+  registered = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaSetParams(TS ts, PetscReal alphaM, PetscReal alphaF, PetscReal gamma, PetscReal beta) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  AlphaData* d = dataOf(ts);
+  d->alphaM = alphaM;
+  d->alphaF = alphaF;
+  d->gamma = gamma;
+  d->beta = beta;
+  PetscFunctionReturn(0);
+}
+
+// Chung & Hulbert Eq. 25 in PETSc's parameterization (= TSAlpha2SetRadius).
+PetscErrorCode GeneralizedAlphaSetRadius(TS ts, PetscReal rho) {
+  PetscFunctionBeginUser;
+  PetscCheck(rho >= 0.0 && rho <= 1.0, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_OUTOFRANGE,
+             "spectral radius %g not in [0, 1]", static_cast<double>(rho));
+  const PetscReal am = (2.0 - rho) / (1.0 + rho), af = 1.0 / (1.0 + rho);
+  const PetscReal b = 0.5 * (1.0 + am - af);
+  PetscCall(GeneralizedAlphaSetParams(ts, am, af, 0.5 + am - af, b * b));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaSetAcceleration(TS ts, Vec A) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  AlphaData* d = dataOf(ts);
+  if (!d->A) PetscCall(VecDuplicate(A, &d->A));
+  PetscCall(VecCopy(A, d->A));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaGetAcceleration(TS ts, Vec* A) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  *A = dataOf(ts)->A;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaSetPrescribedMotion(TS ts, PrescribeFn prescribe, void* ctx) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  dataOf(ts)->prescribe = prescribe;
+  dataOf(ts)->prescribeCtx = ctx;
+  PetscFunctionReturn(0);
+}
+
+}  // namespace strand::solvers
