@@ -139,6 +139,7 @@ private:
     PetscCallAbort(_comm, dyn.setFromOptions());
     _writer->setAttribute("integrator", dyn.schemeName());
     _writer->setAttribute("dt", d.dt);
+    const bool moving = !_problem.model().hubMotions().empty();
     auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec) -> PetscErrorCode {
       PetscFunctionBeginUser;
       _newtonTotal += s.newtonIterations;
@@ -149,6 +150,7 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("strain_energy", s.strain));
       PetscCallCXX(_writer->writeScalarSeries("potential_energy", s.potential));
       PetscCallCXX(_writer->writeScalarSeries("dissipated_work", s.dissipated));
+      if (moving) PetscCallCXX(_writer->writeScalarSeries("support_work", s.supportWork));
       PetscCallCXX(_writer->writeScalarSeries("energy_balance", s.energy()));
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
       _progress.update("t " + fmt("%.5g", s.time) + " s  step " + std::to_string(s.step) + "  Newton " +

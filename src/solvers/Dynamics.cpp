@@ -75,23 +75,23 @@ Dynamics::~Dynamics() {
 // with -dyn_ts_type alpha2).
 PetscErrorCode Dynamics::applyScheme() {
   PetscFunctionBeginUser;
-  PetscReal am = 1.0, af = 1.0, gamma = 0.5, beta = 0.25;  // Newmark
+  // Arnold & Bruls 2007 parameters (alpha_m, alpha_f weight the start of the step)
+  PetscReal am = 0.0, af = 0.0, gamma = 0.5, beta = 0.25;  // Newmark
   if (_desc.integrator == model::Integrator::Hht) {
-    const double a = _desc.hhtAlpha;
-    af = 1.0 - a;
-    gamma = 0.5 + a;
-    beta = 0.25 * (1.0 + a) * (1.0 + a);
+    af = _desc.hhtAlpha;
+    gamma = 0.5 + af;
+    beta = 0.25 * (1.0 + af) * (1.0 + af);
   } else if (_desc.integrator == model::Integrator::GeneralizedAlpha) {
     const double rho = _desc.rhoInf;  // Chung & Hulbert Eq. 25
-    am = (2.0 - rho) / (1.0 + rho);
-    af = 1.0 / (1.0 + rho);
-    gamma = 0.5 + am - af;
-    beta = 0.25 * (1.0 + am - af) * (1.0 + am - af);
+    am = (2.0 * rho - 1.0) / (rho + 1.0);
+    af = rho / (rho + 1.0);
+    gamma = 0.5 + af - am;
+    beta = 0.25 * (gamma + 0.5) * (gamma + 0.5);
   }
   PetscBool ours;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
   if (ours) PetscCall(GeneralizedAlphaSetParams(_ts, am, af, gamma, beta));
-  else PetscCall(TSAlpha2SetParams(_ts, am, af, gamma, beta));
+  else PetscCall(TSAlpha2SetParams(_ts, 1.0 - am, 1.0 - af, gamma, beta));  // PETSc weights the end of the step
   PetscFunctionReturn(0);
 }
 
@@ -173,7 +173,7 @@ PetscErrorCode Dynamics::supportForce(Vec F) {
   PetscFunctionReturn(0);
 }
 
-// F = M A + f_int(U, V) - f_ext at the alpha point; zero on supported rows (the TS sets them).
+// F = M A + f_int(U, V) - f_ext; zero on supported rows (the TS sets them).
 PetscErrorCode Dynamics::formFunction(TS, PetscReal, Vec U, Vec V, Vec A, Vec F, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);

@@ -1,4 +1,5 @@
-// The "strand_alpha" TS: generalized-alpha for second-order systems (GeneralizedAlpha.hpp).
+// The "strand_alpha" TS: generalized-alpha for second-order systems in the form of Arnold & Bruls
+// (GeneralizedAlpha.hpp).
 // Uses PETSc's private TS header the way PETSc's own implementations do (ts->ops, ts->data).
 #include "strand/solvers/GeneralizedAlpha.hpp"
 
@@ -9,12 +10,11 @@ namespace strand::solvers {
 namespace {
 
 struct AlphaData {
-  PetscReal alphaM = 1.0, alphaF = 1.0, gamma = 0.5, beta = 0.25;  // Newmark until set
+  PetscReal alphaM = 0.0, alphaF = 0.0, gamma = 0.5, beta = 0.25;  // Newmark until set
   PetscReal stageTime = 0.0, shiftV = 0.0, shiftA = 0.0;
-  Vec X0 = nullptr, V0 = nullptr, A0 = nullptr;  // start of the step
-  Vec V1 = nullptr, A1 = nullptr;                // end of the step (X1 is the SNES iterate)
-  Vec Xa = nullptr, Va = nullptr, Aa = nullptr;  // alpha point
-  Vec A = nullptr;                               // acceleration at ts->ptime (the state)
+  Vec X0 = nullptr, V0 = nullptr, A0 = nullptr, a0 = nullptr;  // start of the step
+  Vec V1 = nullptr, A1 = nullptr, a1 = nullptr;                // end of the step (X1 is the SNES iterate)
+  Vec A = nullptr, a = nullptr;  // state at ts->ptime: acceleration and acceleration-like variable
   PrescribeFn prescribe = nullptr;
   void* prescribeCtx = nullptr;
 };
@@ -30,22 +30,22 @@ PetscErrorCode checkType(TS ts) {
   PetscFunctionReturn(0);
 }
 
-// A1, V1 from X1 (Newmark relations), then the alpha-point state.
+// Arnold & Bruls (2007) Eqs. 9-11: from X1, the acceleration-like a1, the velocity V1 and the
+// acceleration A1 at t_{n+1}:
+//   a1 = (X1 - X0 - h V0 - h^2 (1/2 - beta) a0) / (beta h^2),   V1 = V0 + h ((1 - gamma) a0 + gamma a1),
+//   (1 - alpha_m) a1 + alpha_m a0 = (1 - alpha_f) A1 + alpha_f A0.
 PetscErrorCode stageVectors(TS ts, Vec X1) {
   AlphaData* d = dataOf(ts);
   const PetscReal h = ts->time_step, b = d->beta, g = d->gamma;
   PetscFunctionBeginUser;
-  PetscCall(VecWAXPY(d->A1, -1.0, d->X0, X1));  // A1 = (X1 - X0 - h V0) / (b h^2) - (1 - 2b)/(2b) A0
-  PetscCall(VecAXPY(d->A1, -h, d->V0));
-  PetscCall(VecAXPBY(d->A1, -(1.0 - 2.0 * b) / (2.0 * b), 1.0 / (b * h * h), d->A0));
-  PetscCall(VecWAXPY(d->V1, (1.0 - g) / g, d->A0, d->A1));  // V1 = V0 + h ((1 - g) A0 + g A1)
+  PetscCall(VecWAXPY(d->a1, -1.0, d->X0, X1));
+  PetscCall(VecAXPY(d->a1, -h, d->V0));
+  PetscCall(VecAXPBY(d->a1, -(0.5 - b) / b, 1.0 / (b * h * h), d->a0));
+  PetscCall(VecWAXPY(d->V1, (1.0 - g) / g, d->a0, d->a1));
   PetscCall(VecAYPX(d->V1, h * g, d->V0));
-  PetscCall(VecWAXPY(d->Xa, -1.0, d->X0, X1));  // Xa = X0 + alpha_f (X1 - X0)
-  PetscCall(VecAYPX(d->Xa, d->alphaF, d->X0));
-  PetscCall(VecWAXPY(d->Va, -1.0, d->V0, d->V1));
-  PetscCall(VecAYPX(d->Va, d->alphaF, d->V0));
-  PetscCall(VecWAXPY(d->Aa, -1.0, d->A0, d->A1));  // Aa = A0 + alpha_m (A1 - A0)
-  PetscCall(VecAYPX(d->Aa, d->alphaM, d->A0));
+  PetscCall(VecCopy(d->a1, d->A1));
+  PetscCall(VecAXPBY(d->A1, d->alphaM / (1.0 - d->alphaF), (1.0 - d->alphaM) / (1.0 - d->alphaF), d->a0));
+  PetscCall(VecAXPY(d->A1, -d->alphaF / (1.0 - d->alphaF), d->A0));
   PetscFunctionReturn(0);
 }
 
@@ -53,15 +53,14 @@ PetscErrorCode snesFunction(SNES, Vec X1, Vec F, TS ts) {
   AlphaData* d = dataOf(ts);
   PetscFunctionBeginUser;
   PetscCall(stageVectors(ts, X1));
-  PetscCall(TSComputeI2Function(ts, d->stageTime, d->Xa, d->Va, d->Aa, F));
-  PetscCall(VecScale(F, 1.0 / d->alphaF));  // so that dF/dX1 = dF/dXa + shiftV dF/dVa + shiftA dF/dAa
+  PetscCall(TSComputeI2Function(ts, d->stageTime, X1, d->V1, d->A1, F));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode snesJacobian(SNES, Vec, Mat J, Mat P, TS ts) {
   AlphaData* d = dataOf(ts);
   PetscFunctionBeginUser;
-  PetscCall(TSComputeI2Jacobian(ts, d->stageTime, d->Xa, d->Va, d->Aa, d->shiftV, d->shiftA, J, P));
+  PetscCall(TSComputeI2Jacobian(ts, d->stageTime, ts->vec_sol, d->V1, d->A1, d->shiftV, d->shiftA, J, P));
   PetscFunctionReturn(0);
 }
 
@@ -74,12 +73,13 @@ PetscErrorCode step(TS ts) {
   PetscCall(VecCopy(ts->vec_sol, d->X0));
   PetscCall(VecCopy(ts->vec_dot, d->V0));
   PetscCall(VecCopy(d->A, d->A0));
+  PetscCall(VecCopy(d->a, d->a0));
   PetscInt rejections = 0;
   for (;;) {
     const PetscReal h = ts->time_step;
-    d->stageTime = ts->ptime + d->alphaF * h;
+    d->stageTime = ts->ptime + h;  // equilibrium at t_{n+1}
     d->shiftV = d->gamma / (d->beta * h);
-    d->shiftA = d->alphaM / (d->alphaF * d->beta * h * h);
+    d->shiftA = (1.0 - d->alphaM) / ((1.0 - d->alphaF) * d->beta * h * h);
     Vec X1 = ts->vec_sol;  // predictor: constant acceleration
     PetscCall(VecAXPY(X1, h, d->V0));
     PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
@@ -97,6 +97,7 @@ PetscErrorCode step(TS ts) {
       PetscCall(stageVectors(ts, X1));  // V1, A1 of the converged X1
       PetscCall(VecCopy(d->V1, ts->vec_dot));
       PetscCall(VecCopy(d->A1, d->A));
+      PetscCall(VecCopy(d->a1, d->a));
       // the next step (fixed unless an adaptor is chosen; stretched or cut to land on the final time)
       PetscReal next = h;
       PetscCall(TSAdaptChoose(ts->adapt, ts, h, nullptr, &next, &accept));
@@ -121,6 +122,7 @@ PetscErrorCode rollBack(TS ts) {
   PetscCall(VecCopy(d->X0, ts->vec_sol));
   PetscCall(VecCopy(d->V0, ts->vec_dot));
   PetscCall(VecCopy(d->A0, d->A));
+  PetscCall(VecCopy(d->a0, d->a));
   PetscFunctionReturn(0);
 }
 
@@ -129,7 +131,7 @@ PetscErrorCode setUp(TS ts) {
   PetscFunctionBeginUser;
   PetscCheck(ts->vec_dot, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ORDER,
              "%s integrates second-order systems: call TS2SetSolution()", kTsGeneralizedAlpha);
-  for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->V1, &d->A1, &d->Xa, &d->Va, &d->Aa})
+  for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->a0, &d->V1, &d->A1, &d->a1})
     if (!*v) PetscCall(VecDuplicate(ts->vec_sol, v));
   PetscCall(TSGetSNES(ts, &ts->snes));
   PetscFunctionReturn(0);
@@ -138,7 +140,7 @@ PetscErrorCode setUp(TS ts) {
 PetscErrorCode reset(TS ts) {
   AlphaData* d = dataOf(ts);
   PetscFunctionBeginUser;
-  for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->V1, &d->A1, &d->Xa, &d->Va, &d->Aa, &d->A}) PetscCall(VecDestroy(v));
+  for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->a0, &d->V1, &d->A1, &d->a1, &d->A, &d->a}) PetscCall(VecDestroy(v));
   PetscFunctionReturn(0);
 }
 
@@ -217,14 +219,14 @@ PetscErrorCode GeneralizedAlphaSetParams(TS ts, PetscReal alphaM, PetscReal alph
   PetscFunctionReturn(0);
 }
 
-// Chung & Hulbert Eq. 25 in PETSc's parameterization (= TSAlpha2SetRadius).
+// Chung & Hulbert 1993 Eq. 25 (Arnold & Bruls 2007 Eq. 17).
 PetscErrorCode GeneralizedAlphaSetRadius(TS ts, PetscReal rho) {
   PetscFunctionBeginUser;
   PetscCheck(rho >= 0.0 && rho <= 1.0, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_OUTOFRANGE,
              "spectral radius %g not in [0, 1]", static_cast<double>(rho));
-  const PetscReal am = (2.0 - rho) / (1.0 + rho), af = 1.0 / (1.0 + rho);
-  const PetscReal b = 0.5 * (1.0 + am - af);
-  PetscCall(GeneralizedAlphaSetParams(ts, am, af, 0.5 + am - af, b * b));
+  const PetscReal am = (2.0 * rho - 1.0) / (rho + 1.0), af = rho / (rho + 1.0);
+  const PetscReal g = 0.5 + af - am;
+  PetscCall(GeneralizedAlphaSetParams(ts, am, af, g, 0.25 * (g + 0.5) * (g + 0.5)));
   PetscFunctionReturn(0);
 }
 
@@ -233,7 +235,9 @@ PetscErrorCode GeneralizedAlphaSetAcceleration(TS ts, Vec A) {
   PetscCall(checkType(ts));
   AlphaData* d = dataOf(ts);
   if (!d->A) PetscCall(VecDuplicate(A, &d->A));
+  if (!d->a) PetscCall(VecDuplicate(A, &d->a));
   PetscCall(VecCopy(A, d->A));
+  PetscCall(VecCopy(A, d->a));  // a_0 = A_0 (Arnold & Bruls 2007, Sec. 3)
   PetscFunctionReturn(0);
 }
 

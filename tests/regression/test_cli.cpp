@@ -197,6 +197,24 @@ TEST(Cli, DynamicSceneWritesFramesAndEnergyAndStopsCleanlyWhenNewtonFails) {
   writeFile(dir / "bad.yaml", bad);
   r = runCommand(strandBinary() + " run " + (dir / "bad.yaml").string() + " -o " + (dir / "bad.h5").string());
   EXPECT_EQ(r.exitCode, 2);
-  EXPECT_NE(r.output.find("bad.yaml:19: dynamics.rho_inf: must lie in [0, 1]"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("bad.yaml:18: dynamics.rho_inf: must lie in [0, 1]"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "bad.h5"));
+}
+
+// Regression (gold values from a run of this code, the commit that made it the README's main job):
+// the default scene meshes/spin-up.yaml, seed 001's spin-up with 10 cable elements, 20,000 steps.
+// Its physics is verified in tests/verification/test_spin_up.cpp.
+TEST(Cli, SpinUpSceneRegression) {
+  const fs::path dir = scratchDir("spin-up");
+  const fs::path out = dir / "spin-up.h5";
+  auto r = runCommand(strandBinary() + " run " + sourceDir() + "/meshes/spin-up.yaml -o " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("t 20 s  step 20000"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("last node at (9.6498"), std::string::npos) << r.output;
+  if (haveH5py()) {
+    auto h = runCommand("/usr/bin/python3 -c \"import h5py; f = h5py.File('" + out.string() +
+                        "'); print(f.attrs['status'], f['frames'].attrs['count'], len(f['series/support_work']))\"");
+    EXPECT_NE(h.output.find("ok 201 20001"), std::string::npos) << h.output;
+  }
+  fs::remove_all(dir);
 }

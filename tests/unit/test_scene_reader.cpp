@@ -730,3 +730,39 @@ TEST(SceneReader, DynamicsSection) {
   EXPECT_TRUE(failsWith(edit(dyn, "dt: 1e-3", "dt: 3"), 13, "dynamics.dt", "larger than t_end"));
   EXPECT_TRUE(failsWith(edit(dyn, "dt: 1e-3", "dt: -1"), 13, "dynamics.dt", "must be positive"));
 }
+
+TEST(SceneReader, HubSupportAndTimeFunctions) {
+  const std::string base = edit(kBase2d, "analysis: static", "analysis: dynamic") +
+                           "dynamics: {dt: 1e-3, t_end: 2}\n";
+  const std::string hub = edit(base, "  - {body: cable, node: 0, type: clamped}",
+                               "  - {body: cable, node: 0, type: clamped, hub: {center: [0, 0], "
+                               "angle: {function: spin_up, omega: 4, duration: 15}}}");
+  const model::SceneDescription s = parseScene(hub, "scene.yaml");
+  ASSERT_TRUE(s.supports[0].hub.present);
+  EXPECT_EQ(s.supports[0].hub.angle.kind, model::TimeFunction::Kind::SpinUp);
+  EXPECT_DOUBLE_EQ(s.supports[0].hub.angle.omega, 4.0);
+  EXPECT_DOUBLE_EQ(s.supports[0].hub.angle.duration, 15.0);
+  auto withAngle = [&](const std::string& angle) {
+    return edit(hub, "{function: spin_up, omega: 4, duration: 15}", angle);
+  };
+  EXPECT_EQ(parseScene(withAngle("0.5"), "scene.yaml").supports[0].hub.angle.value, 0.5);
+  const model::TimeFunction table =
+      parseScene(withAngle("{function: table, time: [0, 1, 3], value: [0, 2, 2]}"), "s.yaml").supports[0].hub.angle;
+  EXPECT_DOUBLE_EQ(table.at(0.5).f, 1.0);
+  EXPECT_TRUE(failsWith(withAngle("{function: spline}"), 10, "supports[0].hub.angle.function",
+                        "unknown time function 'spline'; allowed: constant, linear, ramp, sine, spin_up, table"));
+  EXPECT_TRUE(failsWith(withAngle("{function: table, time: [0, 2, 1], value: [0, 1, 2]}"), 10,
+                        "supports[0].hub.angle.time", "times must increase"));
+  EXPECT_TRUE(failsWith(withAngle("{function: table, time: [0, 1], value: [0]}"), 10, "supports[0].hub.angle.value",
+                        "needs one value per time"));
+  EXPECT_TRUE(failsWith(withAngle("{function: ramp, start: 2, end: 1, value: 1}"), 10, "supports[0].hub.angle.end",
+                        "must be later than start"));
+  EXPECT_TRUE(failsWith(withAngle("{function: spin_up, omega: 4}"), 10, "supports[0].hub.angle.duration",
+                        "missing required value"));
+  EXPECT_TRUE(failsWith(edit(hub, "type: clamped, hub", "type: fixed, dofs: [0], hub"), 10, "supports[0].hub",
+                        "a hub turns a clamped or pinned support"));
+  EXPECT_TRUE(failsWith(edit(hub, "analysis: dynamic", "analysis: static"), 10, "supports[0].hub",
+                        "only with analysis: dynamic"));
+  EXPECT_TRUE(failsWith(edit(hub, "center: [0, 0], ", "center: [0, 0], axis: [0, 0, 1], "), 10,
+                        "supports[0].hub.axis", "a 2D hub turns about z"));
+}

@@ -4,3 +4,4 @@ strand_test(NAME unit_elastica_reference SOURCES unit/test_elastica_reference.cp
 strand_test(NAME unit_output_writer SOURCES unit/test_output_writer.cpp LABELS unit)
 strand_test(NAME unit_scene_reader SOURCES unit/test_scene_reader.cpp LABELS unit)
 target_compile_definitions(unit_scene_reader PRIVATE STRAND_DOCS_DIR="${PROJECT_SOURCE_DIR}/docs")
+strand_test(NAME unit_time_function SOURCES unit/test_time_function.cpp LABELS unit)

@@ -38,31 +38,33 @@ model::DynamicsDesc scheme(model::Integrator integrator, double rhoInf, double d
 }
 
 // x(t_end) of the scheme's single-DOF recurrence for x'' + omega^2 x = 0, x0 = 1, v0 = 0, in the
-// parameterization of GeneralizedAlpha.hpp; Newton is exact for this linear residual
-// Aa + omega^2 Xa = 0, so solve it for X1 directly.
+// form of GeneralizedAlpha.hpp (Arnold & Bruls 2007, Eqs. 9-11, with a0 = A0 = -omega^2); Newton
+// is exact for the linear residual A1 + omega^2 X1 = 0, so solve it for X1 directly.
 double singleDofRecurrence(const model::DynamicsDesc& d, double omega, int steps) {
-  double am = 1, af = 1, g = 0.5, b = 0.25;
+  double am = 0, af = 0, g = 0.5, b = 0.25;
   if (d.integrator == model::Integrator::Hht) {
-    af = 1 - d.hhtAlpha;
-    g = 0.5 + d.hhtAlpha;
-    b = 0.25 * (1 + d.hhtAlpha) * (1 + d.hhtAlpha);
+    af = d.hhtAlpha;
+    g = 0.5 + af;
+    b = 0.25 * (1 + af) * (1 + af);
   } else if (d.integrator == model::Integrator::GeneralizedAlpha) {
-    am = (2 - d.rhoInf) / (1 + d.rhoInf);
-    af = 1 / (1 + d.rhoInf);
-    g = 0.5 + am - af;
-    b = 0.25 * (1 + am - af) * (1 + am - af);
+    am = (2 * d.rhoInf - 1) / (d.rhoInf + 1);
+    af = d.rhoInf / (d.rhoInf + 1);
+    g = 0.5 + af - am;
+    b = 0.25 * (g + 0.5) * (g + 0.5);
   }
   const double h = d.dt, w2 = omega * omega;
-  double x = 1, v = 0, a = -w2;
+  double x = 1, v = 0, acc = -w2, a = -w2;
   for (int n = 0; n < steps; ++n) {
-    // A1 = c (X1 - x - h v) - k a with c = 1/(b h^2), k = (1 - 2b)/(2b); residual linear in X1
-    const double c = 1 / (b * h * h), k = (1 - 2 * b) / (2 * b);
-    // (1 - am) a + am A1 + w2 ((1 - af) x + af X1) = 0
-    const double x1 = -((1 - am) * a + am * (-c * (x + h * v) - k * a) + w2 * (1 - af) * x) / (am * c + w2 * af);
-    const double a1 = c * (x1 - x - h * v) - k * a;
+    // a1 = c (X1 - p), p = x + h v + h^2 (1/2 - b) a;  A1 = (k1 a1 + am a - af acc) / (1 - af)
+    const double c = 1 / (b * h * h), p = x + h * v + h * h * (0.5 - b) * a, k1 = 1 - am;
+    // A1 + w2 X1 = 0:  (k1 c (X1 - p) + am a - af acc) / (1 - af) + w2 X1 = 0
+    const double x1 = (k1 * c * p - am * a + af * acc) / (k1 * c + w2 * (1 - af));
+    const double a1 = c * (x1 - p);
+    const double acc1 = (k1 * a1 + am * a - af * acc) / (1 - af);
     v += h * ((1 - g) * a + g * a1);
     x = x1;
     a = a1;
+    acc = acc1;
   }
   return x;
 }

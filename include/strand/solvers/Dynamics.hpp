@@ -1,17 +1,18 @@
 // Time integration of M a + f_int(u, v) - f_ext = 0 on PETSc TS (options prefix "dyn_").
 //
-// The scheme is generalized-alpha for second-order systems (Chung & Hulbert, J. Appl. Mech. 60
-// (1993) 371), fixed step, on our registered TS "strand_alpha" (GeneralizedAlpha.hpp) started from
-// the consistent acceleration M a0 = f_ext - f_int(u0, v0) (PETSc's TSALPHA2 estimates it, an O(h)
-// error measured in docs/validation.md; -dyn_ts_type alpha2 still selects it for comparison). The
-// residual at the alpha point is F = M a_a + f_int(u_a, v_a) - f_ext (design section 3); the Newton
-// matrix is K + shiftV D + shiftA M, assembled in one pass (Assembler::dynamicJacobian).
+// The scheme is generalized-alpha for second-order systems in the form of Arnold & Bruls (2007),
+// fixed step, on our registered TS "strand_alpha" (GeneralizedAlpha.hpp), started from the
+// consistent acceleration M a0 = f_ext - f_int(u0, v0). The residual F = M a + f_int(u, v) - f_ext
+// holds at the end of each step; the Newton matrix is K + shiftV D + shiftA M, assembled in one pass
+// (Assembler::dynamicJacobian). PETSc's TSALPHA2 (Chung & Hulbert at the alpha point, estimated
+// start) remains selectable with -dyn_ts_type alpha2 for comparison; GeneralizedAlpha.hpp says
+// why it is not the default.
 // Parameter choices of the same scheme (docs/user-guide.md, "Dynamics"):
-//   generalized_alpha  rho_inf in [0, 1]: alpha_m = (2 - rho)/(1 + rho), alpha_f = 1/(1 + rho),
-//                      gamma = 1/2 + alpha_m - alpha_f, beta = (1 + alpha_m - alpha_f)^2 / 4;
-//                      rho_inf = 1 is the non-dissipative midpoint-like member;
-//   newmark            average acceleration: alpha_m = alpha_f = 1, gamma = 1/2, beta = 1/4;
-//   hht                Hilber-Hughes-Taylor: alpha_m = 1, alpha_f = 1 - alpha, gamma = 1/2 + alpha,
+//   generalized_alpha  rho_inf in [0, 1]: alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1),
+//                      gamma = 1/2 + alpha_f - alpha_m, beta = (gamma + 1/2)^2 / 4;
+//                      rho_inf = 1 is the non-dissipative member;
+//   newmark            average acceleration: alpha_m = alpha_f = 0, gamma = 1/2, beta = 1/4;
+//   hht                Hilber-Hughes-Taylor: alpha_m = 0, alpha_f = alpha, gamma = 1/2 + alpha,
 //                      beta = (1 + alpha)^2 / 4.
 // All are second order (tests/verification/test_dynamics.cpp).
 //

@@ -1,17 +1,28 @@
 // Our generalized-alpha TS for second-order systems, registered with PETSc as "strand_alpha".
 //
-// Chung & Hulbert, J. Appl. Mech. 60 (1993) 371, in PETSc's TSALPHA2 parameterization (alpha_m and
-// alpha_f weight the end of the step; Chung-Hulbert's are 1 - these): with h the step,
-//   A1 = (X1 - X0 - h V0) / (beta h^2) - (1 - 2 beta) / (2 beta) A0,   V1 = V0 + h ((1 - gamma) A0 + gamma A1),
-//   Xa = X0 + alpha_f (X1 - X0),  Va = V0 + alpha_f (V1 - V0),  Aa = A0 + alpha_m (A1 - A0),
-// and Newton solves F(t_n + alpha_f h, Xa, Va, Aa) = 0 for X1 (the TS's I2Function/I2Jacobian, the
-// latter with shiftV = gamma / (beta h), shiftA = alpha_m / (alpha_f beta h^2)). It is second order
-// when gamma = 1/2 + alpha_m - alpha_f, PROVIDED A0 is the true initial acceleration.
+// The form of Arnold & Bruls, Multibody Syst. Dyn. 18 (2007) 185, Eqs. 9-11: equilibrium holds at
+// the end of the step with the true acceleration A, and an acceleration-like variable a carries the
+// alpha weights. With h the step, given X1 (the Newton unknown):
+//   a1 = (X1 - X0 - h V0 - h^2 (1/2 - beta) a0) / (beta h^2),   V1 = V0 + h ((1 - gamma) a0 + gamma a1),
+//   (1 - alpha_m) a1 + alpha_m a0 = (1 - alpha_f) A1 + alpha_f A0,
+// and Newton solves F(t_{n+1}, X1, V1, A1) = 0 (the TS's I2Function; the I2Jacobian gets
+// shiftV = gamma / (beta h), shiftA = (1 - alpha_m) / ((1 - alpha_f) beta h^2)). Second order for
+// gamma = 1/2 + alpha_f - alpha_m, with a0 = A0 the true initial acceleration. Parameters
+// (alpha_m, alpha_f weight the START of the step, Chung & Hulbert's convention):
+//   rho_inf:  alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1), beta = (gamma + 1/2)^2 / 4;
+//   Newmark:  alpha_m = alpha_f = 0, gamma = 1/2, beta = 1/4;
+//   HHT:      alpha_m = 0, alpha_f = alpha, gamma = 1/2 + alpha, beta = (1 + alpha)^2 / 4.
+// For linear systems this is Chung & Hulbert's method; for large rotations it differs, and the
+// difference matters (measured, docs/validation.md "Spin-up"): evaluating the internal forces at
+// the interpolated configuration X0 + (1 - alpha_f)(X1 - X0), as Chung & Hulbert and PETSc's
+// TSALPHA2 do, shortens a turning beam by the chord of its rotation, a strain
+// alpha_f (1 - alpha_f) (Omega h)^2 / 2 that the elastic force answers with a spurious stretch (three
+// times the true centrifugal stretch of the seed 001 spin-up at h = 5 ms).
 //
-// Why not TSALPHA2 (measured, docs/validation.md "Time integration"): PETSc 3.18 starts from an
-// acceleration estimated by two backward-Euler half steps, an O(h) error that drops Newmark, HHT and
-// rho_inf < 1 to first order. Here the caller supplies the consistent A0 (M A0 = -R(X0, V0)), and the
-// acceleration is part of the state (restartable). Two more things this TS does that TSALPHA2 cannot:
+// Why not TSALPHA2: besides the above, PETSc 3.18 starts from an acceleration estimated by two
+// backward-Euler half steps, an O(h) error that drops Newmark, HHT and rho_inf < 1 to first order.
+// Here the caller supplies the consistent A0 (M A0 = -R(X0, V0)), and the accelerations are part of
+// the state. Also:
 //   - prescribed motion: a callback overwrites the prescribed entries of X1 at t_{n+1} after the
 //     predictor, so rheonomic supports hold exactly at the end of the step (the residual rows of
 //     those entries must be zero, the Jacobian rows unit);
@@ -25,7 +36,7 @@ inline constexpr const char* kTsGeneralizedAlpha = "strand_alpha";
 
 // Registers the TS type (idempotent; call after PetscInitialize).
 PetscErrorCode GeneralizedAlphaRegister();
-// Parameters as TSAlpha2SetParams, or from the spectral radius as TSAlpha2SetRadius.
+// Parameters in the convention above, or from the spectral radius rho_inf.
 PetscErrorCode GeneralizedAlphaSetParams(TS ts, PetscReal alphaM, PetscReal alphaF, PetscReal gamma, PetscReal beta);
 PetscErrorCode GeneralizedAlphaSetRadius(TS ts, PetscReal rhoInf);
 // The acceleration at the current TS time (required before the first step; copied).
