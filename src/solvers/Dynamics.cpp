@@ -23,6 +23,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, VecDuplicate(_fext, &_w2));
   PetscCallAbort(comm, VecDuplicate(_fext, &_a0));
   PetscCallAbort(comm, VecDuplicate(_fext, &_supported));
+  PetscCallAbort(comm, VecDuplicate(_fext, &_reaction));
   PetscCallAbort(comm, assembler.externalForce(_fext));
   {
     IS free;
@@ -68,7 +69,7 @@ Dynamics::~Dynamics() {
   TSDestroy(&_ts);
   MatDestroy(&_M);
   MatDestroy(&_J);
-  for (Vec* v : {&_fext, &_w1, &_w2, &_a0, &_supported}) VecDestroy(v);
+  for (Vec* v : {&_fext, &_w1, &_w2, &_a0, &_supported, &_reaction}) VecDestroy(v);
 }
 
 // The scene's scheme parameters for the current TS type (ours, or PETSc's TSALPHA2 when chosen
@@ -164,6 +165,10 @@ PetscErrorCode Dynamics::currentAcceleration(Vec* A) {
 
 PetscErrorCode Dynamics::supportForce(Vec F) {
   PetscFunctionBeginUser;
+  if (_reactionValid) {  // from the last residual of the step (formFunction), at the same state
+    PetscCall(VecCopy(_reaction, F));
+    PetscFunctionReturn(0);
+  }
   Vec X, V, A;
   PetscCall(TS2GetSolution(_ts, &X, &V));
   PetscCall(currentAcceleration(&A));
@@ -177,8 +182,12 @@ PetscErrorCode Dynamics::supportForce(Vec F) {
 PetscErrorCode Dynamics::formFunction(TS, PetscReal, Vec U, Vec V, Vec A, Vec F, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
-  PetscCall(self->_asm.residual(U, self->_damped ? V : nullptr, F));
+  PetscCall(self->_asm.residual(U, self->_damped ? V : nullptr, F, assembly::SupportRows::Reaction));
   PetscCall(MatMultAdd(self->_M, A, F, F));
+  if (self->_moving) {  // the support force of this state; the last call of a step is at its end
+    PetscCall(VecPointwiseMult(self->_reaction, F, self->_supported));
+    self->_reactionValid = true;
+  }
   PetscCall(self->_asm.zeroSupportedRows(F));
   PetscFunctionReturn(0);
 }
@@ -255,6 +264,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
   PetscCall(TSSetTime(_ts, 0.0));
   PetscCall(TSSetStepNumber(_ts, 0));
   PetscCall(TSSetTimeStep(_ts, _desc.dt));
+  _reactionValid = false;
   PetscCall(_asm.prescribedMotion(0.0, X, V, nullptr));
   PetscCall(initialAcceleration(X, V, _a0));
   PetscCall(TS2SetSolution(_ts, X, V));

@@ -84,6 +84,8 @@ private:
   Mat _M = nullptr, _J = nullptr;  // mass with supported columns kept; Newton matrix
   Vec _fext = nullptr, _w1 = nullptr, _w2 = nullptr;
   Vec _supported = nullptr;  // 1 on supported rows, 0 elsewhere
+  Vec _reaction = nullptr;   // support force of the last residual evaluation (moving supports)
+  bool _reactionValid = false;
   Vec _a0 = nullptr;         // initial acceleration (kept for TS types without an acceleration state)
   bool _damped = false, _moving = false;
   const StepCallback* _onStep = nullptr;
