@@ -370,7 +370,7 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
     for (int k = 0; k < static_cast<int>(hub.blocks.size()); ++k) {
       const PetscInt lb = dofs.localBlock(dofs.globalBlock()[hub.blocks[k]]);
       if (lb < 0 || lb >= dofs.ownedBlocks()) continue;
-      for (int i = 0; i < model.dim(); ++i) _moved.push_back({lb * bs + i, h, k, i});
+      _moved.push_back({lb * bs, h, k});
     }
   }
   if (model.dim() == 2)
@@ -455,6 +455,17 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
   PetscFunctionReturn(0);
 }
 
+// The unit diagonal of supported rows (the element matrices were masked), then final assembly.
+PetscErrorCode Assembler::assembleWithSupportDiagonal(Mat J) const {
+  PetscFunctionBeginUser;
+  const PetscInt bs = _dofs.blockSize(), n = _dofs.ownedBlocks() * bs, row0 = _dofs.ownedBegin() * bs;
+  for (PetscInt i = 0; i < n; ++i)
+    if (_fixedLocal[i]) PetscCall(MatSetValue(J, row0 + i, row0 + i, 1.0, ADD_VALUES));
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evJacobian, 0, 0, 0, 0));
@@ -464,11 +475,7 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   PetscCall(MatZeroEntries(J));
   PetscCall(_impl->jacobian(x, loadFactor, J, _fixedLocal));
   PetscCall(endLocal(_xWork, &xl, &x));
-  const PetscInt bs = _dofs.blockSize(), n = _dofs.ownedBlocks() * bs, row0 = _dofs.ownedBegin() * bs;
-  for (PetscInt i = 0; i < n; ++i)
-    if (_fixedLocal[i]) PetscCall(MatSetValue(J, row0 + i, row0 + i, 1.0, ADD_VALUES));
-  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(assembleWithSupportDiagonal(J));
   PetscCall(PetscLogEventEnd(evJacobian, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -485,11 +492,7 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscR
   PetscCall(_impl->dynamicJacobian(x, v, shiftV, shiftA, J, _fixedLocal));
   PetscCall(endLocal(_xWork, &xl, &x));
   if (V) PetscCall(endLocal(_vWork, &vl, &v));
-  const PetscInt bs = _dofs.blockSize(), n = _dofs.ownedBlocks() * bs, row0 = _dofs.ownedBegin() * bs;
-  for (PetscInt i = 0; i < n; ++i)
-    if (_fixedLocal[i]) PetscCall(MatSetValue(J, row0 + i, row0 + i, 1.0, ADD_VALUES));
-  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(assembleWithSupportDiagonal(J));
   PetscCall(PetscLogEventEnd(evDynJacobian, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -527,13 +530,15 @@ PetscErrorCode Assembler::prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) con
   if (V) PetscCall(VecGetArray(V, &v));
   if (A) PetscCall(VecGetArray(A, &a));
   const int D = _model.dim();
-  for (const MovedDof& m : _moved) {
+  for (const MovedBlock& m : _moved) {
     const model::HubMotion& hub = _model.hubMotions()[m.hub];
     double u[3], du[3], ddu[3];
     hub.state(m.block, &_model.initialCoordinates()[hub.blocks[m.block] * D], D, t, u, du, ddu);
-    if (x) x[m.owned] = u[m.component];
-    if (v) v[m.owned] = du[m.component];
-    if (a) a[m.owned] = ddu[m.component];
+    for (int i = 0; i < D; ++i) {
+      if (x) x[m.owned + i] = u[i];
+      if (v) v[m.owned + i] = du[i];
+      if (a) a[m.owned + i] = ddu[i];
+    }
   }
   if (X) PetscCall(VecRestoreArray(X, &x));
   if (V) PetscCall(VecRestoreArray(V, &v));

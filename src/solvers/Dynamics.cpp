@@ -77,22 +77,17 @@ Dynamics::~Dynamics() {
 PetscErrorCode Dynamics::applyScheme() {
   PetscFunctionBeginUser;
   // Arnold & Bruls 2007 parameters (alpha_m, alpha_f weight the start of the step)
-  PetscReal am = 0.0, af = 0.0, gamma = 0.5, beta = 0.25;  // Newmark
+  AlphaParams p{0.0, 0.0, 0.5, 0.25};  // Newmark
   if (_desc.integrator == model::Integrator::Hht) {
-    af = _desc.hhtAlpha;
-    gamma = 0.5 + af;
-    beta = 0.25 * (1.0 + af) * (1.0 + af);
+    const double a = _desc.hhtAlpha;
+    p = {0.0, a, 0.5 + a, 0.25 * (1.0 + a) * (1.0 + a)};
   } else if (_desc.integrator == model::Integrator::GeneralizedAlpha) {
-    const double rho = _desc.rhoInf;  // Chung & Hulbert Eq. 25
-    am = (2.0 * rho - 1.0) / (rho + 1.0);
-    af = rho / (rho + 1.0);
-    gamma = 0.5 + af - am;
-    beta = 0.25 * (gamma + 0.5) * (gamma + 0.5);
+    p = GeneralizedAlphaParamsFromRadius(_desc.rhoInf);
   }
   PetscBool ours;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
-  if (ours) PetscCall(GeneralizedAlphaSetParams(_ts, am, af, gamma, beta));
-  else PetscCall(TSAlpha2SetParams(_ts, 1.0 - am, 1.0 - af, gamma, beta));  // PETSc weights the end of the step
+  if (ours) PetscCall(GeneralizedAlphaSetParams(_ts, p.alphaM, p.alphaF, p.gamma, p.beta));
+  else PetscCall(TSAlpha2SetParams(_ts, 1.0 - p.alphaM, 1.0 - p.alphaF, p.gamma, p.beta));  // PETSc weights the end of the step
   PetscFunctionReturn(0);
 }
 

@@ -219,14 +219,17 @@ PetscErrorCode GeneralizedAlphaSetParams(TS ts, PetscReal alphaM, PetscReal alph
   PetscFunctionReturn(0);
 }
 
-// Chung & Hulbert 1993 Eq. 25 (Arnold & Bruls 2007 Eq. 17).
+AlphaParams GeneralizedAlphaParamsFromRadius(PetscReal rho) {
+  const PetscReal am = (2.0 * rho - 1.0) / (rho + 1.0), af = rho / (rho + 1.0), g = 0.5 + af - am;
+  return {am, af, g, 0.25 * (g + 0.5) * (g + 0.5)};
+}
+
 PetscErrorCode GeneralizedAlphaSetRadius(TS ts, PetscReal rho) {
   PetscFunctionBeginUser;
   PetscCheck(rho >= 0.0 && rho <= 1.0, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_OUTOFRANGE,
              "spectral radius %g not in [0, 1]", static_cast<double>(rho));
-  const PetscReal am = (2.0 * rho - 1.0) / (rho + 1.0), af = rho / (rho + 1.0);
-  const PetscReal g = 0.5 + af - am;
-  PetscCall(GeneralizedAlphaSetParams(ts, am, af, g, 0.25 * (g + 0.5) * (g + 0.5)));
+  const AlphaParams p = GeneralizedAlphaParamsFromRadius(rho);
+  PetscCall(GeneralizedAlphaSetParams(ts, p.alphaM, p.alphaF, p.gamma, p.beta));
   PetscFunctionReturn(0);
 }
 

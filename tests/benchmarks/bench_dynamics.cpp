@@ -21,21 +21,9 @@ int main(int argc, char** argv) {
   PetscReal tEnd = 20.0;
   PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-repeat", &repeat, nullptr));
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-t_end", &tEnd, nullptr));
-  Section s;
-  s.E = 70e9;
-  s.A = 4e-4;
-  s.I = 2e-7;
-  s.rho = 3000;
-  const double L = 10.0, omega0 = 4.0, T = 15.0;
+  const double L = 10.0, omega0 = 4.0, E = 70e9;
   for (PetscInt rep = 0; rep < repeat; ++rep) {
-    model::SceneDescription sc = cantilever(2, 10, L, s);
-    sc.analysis = model::Analysis::Dynamic;
-    model::HubDesc& hub = sc.supports[0].hub;
-    hub.present = true;
-    hub.angle.kind = model::TimeFunction::Kind::SpinUp;
-    hub.angle.omega = omega0;
-    hub.angle.duration = T;
-    solvers::Problem p(PETSC_COMM_WORLD, sc);
+    solvers::Problem p(PETSC_COMM_WORLD, seed001Beam(E, 10, omega0));
     model::DynamicsDesc d;
     d.rhoInf = 0.9;
     d.dt = 1e-3;
@@ -66,7 +54,7 @@ int main(int argc, char** argv) {
       const model::Vec3 tip = nodePosition(p, q, 0, -1);
       stretch = std::hypot(tip[0], tip[1]) - L;
     }
-    model::SceneDescription ss = cantilever(2, 10, L, s);
+    model::SceneDescription ss = seed001Beam(E, 10);
     ss.rotation.present = true;
     ss.rotation.omega = omega0;
     solvers::Problem ps(PETSC_COMM_WORLD, ss);

@@ -46,6 +46,27 @@ inline model::SceneDescription cantilever(int dim, int elements, double length =
   return sc;
 }
 
+// The spinning beam of seed 001 (section 4.1): L = 10 m, A = 4e-4 m^2, I = 2e-7 m^4,
+// rho = 3000 kg/m^3, 2D cables clamped at the origin. With omega0 > 0 the clamp turns with a hub
+// whose angle follows the spin-up profile of seed 001 Eq. 57 (Omega0 = omega0, T = duration).
+inline model::SceneDescription seed001Beam(double E, int elements, double omega0 = 0.0, double duration = 15.0) {
+  Section s;
+  s.E = E;
+  s.A = 4e-4;
+  s.I = 2e-7;
+  s.rho = 3000.0;
+  model::SceneDescription sc = cantilever(2, elements, 10.0, s);
+  if (omega0 > 0.0) {
+    sc.analysis = model::Analysis::Dynamic;
+    model::HubDesc& hub = sc.supports[0].hub;
+    hub.present = true;
+    hub.angle.kind = model::TimeFunction::Kind::SpinUp;
+    hub.angle.omega = omega0;
+    hub.angle.duration = duration;
+  }
+  return sc;
+}
+
 inline void addTipLoad(model::SceneDescription& sc, model::Vec3 force, model::Vec3 moment = {0, 0, 0}) {
   model::NodalLoadDesc l;
   l.at.body = sc.bodies[0].name;

@@ -72,6 +72,7 @@ private:
   PetscErrorCode beginLocal(Vec from, Vec work, Vec* local, const PetscScalar** a);
   PetscErrorCode endLocal(Vec work, Vec* local, const PetscScalar** a);
   PetscErrorCode assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R, SupportRows rows);
+  PetscErrorCode assembleWithSupportDiagonal(Mat J) const;
 
   const model::Model& _model;
   const model::DofMap& _dofs;
@@ -79,11 +80,11 @@ private:
   Vec _xWork = nullptr, _rWork = nullptr, _vWork = nullptr;  // ghosted work vectors
   std::vector<char> _fixedLocal;           // per DOF of the ghosted local form
   std::vector<char> _noneFixed;            // all zero, same size
-  struct MovedDof {
-    PetscInt owned;  // index among the owned DOFs
-    int hub, block, component;
+  struct MovedBlock {
+    PetscInt owned;  // index of its first coordinate among the owned DOFs
+    int hub, block;  // HubMotion and index into its blocks
   };
-  std::vector<MovedDof> _moved;            // owned DOFs of hub supports
+  std::vector<MovedBlock> _moved;          // owned blocks of hub supports
   std::vector<double> _q0Local;            // initial coordinates, ghosted local form
   std::vector<double> _nodalForceOwned;    // constant nodal forces on owned DOFs
   VecScatter _toRoot = nullptr;

@@ -34,6 +34,13 @@ namespace strand::solvers {
 
 inline constexpr const char* kTsGeneralizedAlpha = "strand_alpha";
 
+// alpha_m, alpha_f (weights of the start of the step), gamma, beta.
+struct AlphaParams {
+  PetscReal alphaM, alphaF, gamma, beta;
+};
+// Chung & Hulbert 1993 Eq. 25 (Arnold & Bruls 2007 Eq. 17) for the spectral radius rho_inf.
+AlphaParams GeneralizedAlphaParamsFromRadius(PetscReal rhoInf);
+
 // Registers the TS type (idempotent; call after PetscInitialize).
 PetscErrorCode GeneralizedAlphaRegister();
 // Parameters in the convention above, or from the spectral radius rho_inf.
