@@ -134,12 +134,14 @@ private:
     const model::DynamicsDesc& d = _scene.dynamics;
     Vec V;
     PetscCallAbort(_comm, VecDuplicate(X, &V));
-    PetscCallAbort(_comm, VecSet(V, 0.0));
+    PetscCallAbort(_comm, _problem.assembler().initialVelocity(V));
     solvers::Dynamics dyn(_problem.assembler(), d);
     PetscCallAbort(_comm, dyn.setFromOptions());
     _writer->setAttribute("integrator", dyn.schemeName());
     _writer->setAttribute("dt", d.dt);
     const bool moving = !_problem.model().hubMotions().empty();
+    const bool joints = _problem.model().hasConstraints();
+    const auto& rigid = _problem.model().rigidBodies();
     auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec) -> PetscErrorCode {
       PetscFunctionBeginUser;
       _newtonTotal += s.newtonIterations;
@@ -151,6 +153,21 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("potential_energy", s.potential));
       PetscCallCXX(_writer->writeScalarSeries("dissipated_work", s.dissipated));
       if (moving) PetscCallCXX(_writer->writeScalarSeries("support_work", s.supportWork));
+      if (joints) {
+        PetscCallCXX(_writer->writeScalarSeries("constraint_position", s.constraintPosition));
+        PetscCallCXX(_writer->writeScalarSeries("constraint_velocity", s.constraintVelocity));
+      }
+      if (!rigid.empty()) {  // x, y, phi of every rigid body, every step
+        std::vector<double> q;
+        PetscCall(_problem.assembler().gatherToRoot(Xs, q));
+        for (const model::RigidBody& rb : rigid) {
+          const double* c = q.empty() ? nullptr : &q[2 * rb.posBlock];
+          const double* r = q.empty() ? nullptr : &q[2 * rb.rotBlock];
+          PetscCallCXX(_writer->writeScalarSeries("rigid_" + rb.name + "_x", c ? c[0] : 0.0));
+          PetscCallCXX(_writer->writeScalarSeries("rigid_" + rb.name + "_y", c ? c[1] : 0.0));
+          PetscCallCXX(_writer->writeScalarSeries("rigid_" + rb.name + "_phi", r ? r[0] : 0.0));
+        }
+      }
       PetscCallCXX(_writer->writeScalarSeries("energy_balance", s.energy()));
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
       _progress.update("t " + fmt("%.5g", s.time) + " s  step " + std::to_string(s.step) + "  Newton " +

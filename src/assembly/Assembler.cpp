@@ -1,9 +1,11 @@
 #include "strand/assembly/Assembler.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "strand/elements/AncfCable.hpp"
 #include "strand/elements/NodalMoment.hpp"
+#include "Multibody.hpp"
 
 namespace strand::assembly {
 
@@ -355,13 +357,19 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
   _fixedLocal.assign(nLocal, 0);
   _q0Local.assign(nLocal, 0.0);
   _nodalForceOwned.assign(dofs.ownedBlocks() * bs, 0.0);
+  _multiplierOwned.assign(dofs.ownedBlocks() * bs, 0);
+  _v0Owned.assign(dofs.ownedBlocks() * bs, 0.0);
   for (int b = 0; b < model.numBlocks(); ++b) {
     const PetscInt lb = dofs.localBlock(dofs.globalBlock()[b]);
     if (lb < 0) continue;
     for (PetscInt i = 0; i < bs; ++i) {
       _fixedLocal[lb * bs + i] = model.fixedDofs()[b * bs + i];
       _q0Local[lb * bs + i] = model.initialCoordinates()[b * bs + i];
-      if (lb < dofs.ownedBlocks()) _nodalForceOwned[lb * bs + i] = model.nodalForces()[b * bs + i];
+      if (lb < dofs.ownedBlocks()) {
+        _nodalForceOwned[lb * bs + i] = model.nodalForces()[b * bs + i];
+        _multiplierOwned[lb * bs + i] = model.multiplierDofs()[b * bs + i];
+        _v0Owned[lb * bs + i] = model.initialVelocities()[b * bs + i];
+      }
     }
   }
   _noneFixed.assign(nLocal, 0);
@@ -377,6 +385,7 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
     _impl = std::make_unique<CableImpl<2>>(model, dofs, _q0Local);
   else
     _impl = std::make_unique<CableImpl<3>>(model, dofs, _q0Local);
+  _multibody = std::make_unique<Multibody>(model, dofs, _q0Local);
 }
 
 Assembler::~Assembler() {
@@ -390,6 +399,76 @@ Assembler::~Assembler() {
 PetscErrorCode Assembler::initialState(Vec X) const {
   PetscFunctionBeginUser;
   PetscCall(VecSet(X, 0.0));  // unknowns are displacements from the reference shape
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::initialVelocity(Vec V) const {
+  PetscFunctionBeginUser;
+  PetscScalar* v;
+  PetscCall(VecGetArray(V, &v));
+  for (size_t i = 0; i < _v0Owned.size(); ++i) v[i] = _v0Owned[i];
+  PetscCall(VecRestoreArray(V, &v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::multiplierMask(Vec mask) const {
+  PetscFunctionBeginUser;
+  PetscScalar* m;
+  PetscCall(VecGetArray(mask, &m));
+  for (size_t i = 0; i < _multiplierOwned.size(); ++i) m[i] = _multiplierOwned[i];
+  PetscCall(VecRestoreArray(mask, &m));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::saddleMatrix(Vec X, Mat S) {
+  PetscFunctionBeginUser;
+  Vec xl;
+  const PetscScalar* x;
+  PetscCall(beginLocal(X, _xWork, &xl, &x));
+  PetscCall(MatZeroEntries(S));
+  PetscCall(_impl->mass(S, _fixedLocal));
+  PetscCall(_multibody->mass(S, _fixedLocal));
+  PetscCall(_multibody->jacobian(x, 1.0, 0.0, S, _fixedLocal, true));
+  PetscCall(endLocal(_xWork, &xl, &x));
+  PetscCall(assembleWithSupportDiagonal(S));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::constraintVelocityTerm(Vec X, Vec V, Vec R) {
+  PetscFunctionBeginUser;
+  Vec xl, vl, rl;
+  const PetscScalar *x, *v;
+  PetscScalar* r;
+  PetscCall(beginLocal(X, _xWork, &xl, &x));
+  PetscCall(beginLocal(V, _vWork, &vl, &v));
+  PetscCall(VecGhostGetLocalForm(_rWork, &rl));
+  PetscCall(VecSet(rl, 0.0));
+  PetscCall(VecGetArray(rl, &r));
+  _multibody->velocityTerm(x, v, r);
+  PetscCall(VecRestoreArray(rl, &r));
+  PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
+  PetscCall(VecGhostUpdateBegin(_rWork, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGhostUpdateEnd(_rWork, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(endLocal(_xWork, &xl, &x));
+  PetscCall(endLocal(_vWork, &vl, &v));
+  PetscCall(VecCopy(_rWork, R));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::constraintViolation(Vec X, Vec V, PetscReal* position, PetscReal* velocity) {
+  PetscFunctionBeginUser;
+  Vec xl, vl;
+  const PetscScalar *x, *v;
+  PetscCall(beginLocal(X, _xWork, &xl, &x));
+  PetscCall(beginLocal(V, _vWork, &vl, &v));
+  double local[2];
+  _multibody->violation(x, v, &local[0], &local[1]);
+  PetscCall(endLocal(_xWork, &xl, &x));
+  PetscCall(endLocal(_vWork, &vl, &v));
+  double global[2];
+  PetscCallMPI(MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, _dofs.comm()));
+  *position = global[0];
+  *velocity = global[1];
   PetscFunctionReturn(0);
 }
 
@@ -436,6 +515,7 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
   PetscCall(VecSet(rl, 0.0));
   PetscCall(VecGetArray(rl, &r));
   PetscCallCXX(_impl->residual(x, v, loadFactor, r));
+  PetscCallCXX(_multibody->residual(x, _constraintScale, r));
   PetscCall(VecRestoreArray(rl, &r));
   PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
   PetscCall(VecGhostUpdateBegin(_rWork, ADD_VALUES, SCATTER_REVERSE));
@@ -474,6 +554,7 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   PetscCall(beginLocal(X, _xWork, &xl, &x));
   PetscCall(MatZeroEntries(J));
   PetscCall(_impl->jacobian(x, loadFactor, J, _fixedLocal));
+  PetscCall(_multibody->jacobian(x, _constraintScale, 0.0, J, _fixedLocal));
   PetscCall(endLocal(_xWork, &xl, &x));
   PetscCall(assembleWithSupportDiagonal(J));
   PetscCall(PetscLogEventEnd(evJacobian, 0, 0, 0, 0));
@@ -490,6 +571,7 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscR
   if (V) PetscCall(beginLocal(V, _vWork, &vl, &v));
   PetscCall(MatZeroEntries(J));
   PetscCall(_impl->dynamicJacobian(x, v, shiftV, shiftA, J, _fixedLocal));
+  PetscCall(_multibody->jacobian(x, _constraintScale, shiftA, J, _fixedLocal));
   PetscCall(endLocal(_xWork, &xl, &x));
   if (V) PetscCall(endLocal(_vWork, &vl, &v));
   PetscCall(assembleWithSupportDiagonal(J));
@@ -516,6 +598,7 @@ PetscErrorCode Assembler::massMatrix(Mat M, bool maskSupports) {
   PetscCall(PetscLogEventBegin(evMass, 0, 0, 0, 0));
   PetscCall(MatZeroEntries(M));
   PetscCall(_impl->mass(M, maskSupports ? _fixedLocal : _noneFixed));
+  PetscCall(_multibody->mass(M, maskSupports ? _fixedLocal : _noneFixed));
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(evMass, 0, 0, 0, 0));
@@ -575,6 +658,14 @@ PetscErrorCode Assembler::strainEnergy(Vec X, PetscReal* U) {
   PetscCall(endLocal(_xWork, &xl, &x));
   PetscCallMPI(MPI_Allreduce(&local, U, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
   PetscFunctionReturn(0);
+}
+
+PetscReal Assembler::coordinateNorm() const {
+  double local = 0.0, global = 0.0;
+  const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();
+  for (PetscInt i = 0; i < n; ++i) local += _q0Local[i] * _q0Local[i];
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm());
+  return std::sqrt(global);
 }
 
 PetscErrorCode Assembler::freeDofs(IS* is) const {

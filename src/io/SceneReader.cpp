@@ -335,6 +335,11 @@ const Choice<model::Integrator> kIntegrators[] = {{"generalized_alpha", model::I
                                                   {"newmark", model::Integrator::Newmark},
                                                   {"hht", model::Integrator::Hht}};
 
+const Choice<model::JointType> kJointTypes[] = {{"pin", model::JointType::Pin},
+                                                 {"revolute", model::JointType::Pin},
+                                                 {"spherical", model::JointType::Pin},
+                                                 {"distance", model::JointType::Distance},
+                                                 {"clamp", model::JointType::Clamp}};
 const Choice<model::SupportType> kSupportTypes[] = {{"clamped", model::SupportType::Clamped},
                                                     {"pinned", model::SupportType::Pinned},
                                                     {"fixed", model::SupportType::Fixed}};
@@ -596,12 +601,17 @@ public:
   model::SceneDescription parse(const YAML::Node& rootNode) {
     const Field root(rootNode, "", ctx_.file, lineOf(rootNode, 1));
     if (!root.present()) root.fail("the scene is empty; expected a map of scene keys");
-    root.expectMap({"analysis", "dimension", "discretization", "bodies", "supports", "junctions", "loads",
-                    "static", "modes", "rotation", "sweep", "dynamics", "output"});
+    root.expectMap({"analysis", "dimension", "discretization", "bodies", "rigid_bodies", "joints", "supports",
+                    "junctions", "loads", "static", "modes", "rotation", "sweep", "dynamics", "output"});
     scene_.analysis = pick(root.child("analysis"), "analysis", kAnalyses).value;
     scene_.dimension = ctx_.dim = requireIntInRange(root.child("dimension"), 2, 3);
     if (const Field f = root.child("discretization"); f.present()) readDiscretization(f);
-    readBodies(root.child("bodies"));
+    const Field rigid = root.child("rigid_bodies");
+    readBodies(root.child("bodies"), rigid.present());
+    if (rigid.present()) readRigidBodies(rigid);
+    if (const Field f = root.child("joints"); f.present()) readJoints(f);
+    if ((rigid.present() || root.child("joints").present()) && scene_.analysis == model::Analysis::Modes)
+      root.child("analysis").fail("modal analysis of rigid bodies and joints is not supported yet; use static or dynamic");
     if (const Field f = root.child("supports"); f.present()) readSupports(f);
     if (const Field f = root.child("junctions"); f.present()) readJunctions(f);
     if (const Field f = root.child("loads"); f.present()) readLoads(f);
@@ -740,9 +750,10 @@ private:
       scene_.discretization.gaussPoints = requireIntInRange(g, 2, 8);
   }
 
-  void readBodies(const Field& f) {
+  void readBodies(const Field& f, bool rigidBodiesToo) {
+    if (rigidBodiesToo && !f.present()) return;  // a scene of rigid bodies only
     const std::vector<Field> items = f.items();
-    if (items.empty()) f.fail("needs at least one body");
+    if (items.empty() && !rigidBodiesToo) f.fail("needs at least one body");
     for (const Field& item : items) {
       BodyDesc body = readBody(item, ctx_);
       for (const BodyDesc& other : scene_.bodies)
@@ -779,6 +790,92 @@ private:
       node.fail("node index out of range: body '" + body.name + "' has nodes 0.." +
                 std::to_string(body.elements) + " or 'last' (got " + std::to_string(ref.node) + ")");
     return ref;
+  }
+
+  // rigid_bodies: planar rigid bodies (dimension 2).
+  void readRigidBodies(const Field& f) {
+    for (const Field& item : f.items()) {
+      item.expectMap({"name", "mass", "inertia", "position", "angle", "velocity", "angular_velocity", "force",
+                      "torque", "fixed"});
+      if (ctx_.dim != 2) item.fail("rigid bodies are planar in this version: use dimension: 2");
+      model::RigidBodyDesc r;
+      r.mark = item.mark();
+      r.name = item.child("name").text();
+      for (const BodyDesc& b : scene_.bodies)
+        if (b.name == r.name) item.child("name").fail("the name '" + r.name + "' is already a body");
+      for (const model::RigidBodyDesc& o : scene_.rigidBodies)
+        if (o.name == r.name) item.child("name").fail("duplicate rigid body name '" + r.name + "'");
+      r.mass = requirePositive(item.child("mass"));
+      r.inertia = requirePositive(item.child("inertia"));
+      r.position = readVector(item.child("position"), 2);
+      if (const Field a = item.child("angle"); a.present()) r.angle = a.number();
+      if (const Field v = item.child("velocity"); v.present()) r.velocity = readVector(v, 2);
+      if (const Field w = item.child("angular_velocity"); w.present()) r.angularVelocity = w.number();
+      if (const Field F = item.child("force"); F.present()) r.force = readVector(F, 2);
+      if (const Field t = item.child("torque"); t.present()) r.torque = t.number();
+      if (const Field fx = item.child("fixed"); fx.present()) {
+        for (const Field& e : fx.items()) {
+          const std::string c = e.text();
+          const int k = c == "x" ? 0 : c == "y" ? 1 : c == "phi" ? 2 : -1;
+          if (k < 0) e.fail("unknown coordinate '" + c + "'; allowed: x, y, phi");
+          if (std::find(r.fixed.begin(), r.fixed.end(), k) != r.fixed.end()) e.fail("listed twice");
+          r.fixed.push_back(k);
+        }
+      }
+      scene_.rigidBodies.push_back(std::move(r));
+    }
+  }
+
+  // One end of a joint: {ground: [x, y(, z)]}, {body: <cable>, node: i}, {body: <rigid>, point: [x, y]}.
+  model::JointEndDesc readJointEnd(const Field& f) const {
+    f.expectMap({"ground", "body", "node", "point"});
+    model::JointEndDesc e;
+    e.mark = f.mark();
+    if (const Field g = f.child("ground"); g.present()) {
+      if (f.child("body").present()) f.fail("give either 'ground' or 'body', not both");
+      e.kind = model::JointEndDesc::Kind::Ground;
+      e.point = readVector(g, ctx_.dim);
+      return e;
+    }
+    const Field body = f.child("body");
+    if (!body.present()) f.fail("a joint end needs 'ground: [point]' or 'body'");
+    const std::string name = body.text();
+    for (const model::RigidBodyDesc& r : scene_.rigidBodies)
+      if (r.name == name) {
+        if (f.child("node").present()) f.child("node").fail("'" + name + "' is a rigid body: give 'point' (body frame)");
+        e.kind = model::JointEndDesc::Kind::RigidPoint;
+        e.body = name;
+        if (const Field p = f.child("point"); p.present()) e.point = readVector(p, 2);
+        return e;
+      }
+    if (f.child("point").present()) f.child("point").fail("'point' is for rigid bodies; a cable end is a 'node'");
+    const NodeRef ref = readNodeRef(f);
+    e.kind = model::JointEndDesc::Kind::CableNode;
+    e.body = ref.body;
+    e.node = ref.node;
+    return e;
+  }
+
+  void readJoints(const Field& f) {
+    for (const Field& item : f.items()) {
+      item.expectMap({"type", "a", "b", "length"});
+      model::JointDesc j;
+      j.mark = item.mark();
+      j.type = pick(item.child("type"), "joint type", kJointTypes).value;
+      j.a = readJointEnd(item.child("a"));
+      j.b = readJointEnd(item.child("b"));
+      if (const Field l = item.child("length"); l.present()) {
+        if (j.type != model::JointType::Distance) l.fail("only used by type: distance");
+        j.length = requirePositive(l);
+      }
+      if (j.type == model::JointType::Clamp) {
+        if (j.a.kind != model::JointEndDesc::Kind::CableNode)
+          item.child("a").fail("a clamp holds a cable node: end a must be {body: <cable>, node: i}");
+        if (j.b.kind == model::JointEndDesc::Kind::CableNode)
+          item.child("b").fail("a clamp holds to the ground or a rigid body, not to another cable node (use pin)");
+      }
+      scene_.joints.push_back(std::move(j));
+    }
   }
 
   // Node index with `last` resolved, to compare references.

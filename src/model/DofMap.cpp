@@ -8,23 +8,40 @@
 namespace strand::model {
 namespace {
 
-// Rows of a CSR graph with sorted, unique entries: rows[r] lists the blocks sharing an element with r.
+// The block groups that couple DOFs, as CSR: every element's four blocks, then every coupling
+// (rigid body, joint) of the model.
+void blockGroups(const Model& model, std::vector<PetscInt>& ptr, std::vector<int>& blk) {
+  ptr.assign(1, 0);
+  blk.clear();
+  blk.reserve(4 * model.elements().size());
+  for (const ElementRef& e : model.elements()) {
+    blk.insert(blk.end(), e.blocks.begin(), e.blocks.end());
+    ptr.push_back(static_cast<PetscInt>(blk.size()));
+  }
+  for (const Coupling& c : model.couplings()) {
+    blk.insert(blk.end(), c.blocks.begin(), c.blocks.end());
+    ptr.push_back(static_cast<PetscInt>(blk.size()));
+  }
+}
+
+// Rows of a CSR graph with sorted, unique entries: rows[r] lists the blocks sharing a group with r.
 // Self-loops are kept (they are the diagonal block for preallocation) unless dropSelf.
-void buildAdjacency(const std::vector<ElementRef>& elements, int nRows, const std::vector<PetscInt>& rowOf,
-                    bool dropSelf, std::vector<PetscInt>& xadj, std::vector<PetscInt>& adj,
-                    const std::vector<PetscInt>* colOf = nullptr) {
+void buildAdjacency(const std::vector<PetscInt>& gptr, const std::vector<int>& gblk, int nRows,
+                    const std::vector<PetscInt>& rowOf, bool dropSelf, std::vector<PetscInt>& xadj,
+                    std::vector<PetscInt>& adj, const std::vector<PetscInt>* colOf = nullptr) {
+  const size_t nGroups = gptr.size() - 1;
   xadj.assign(nRows + 1, 0);
-  for (const ElementRef& e : elements)
-    for (int a = 0; a < 4; ++a)
-      if (rowOf[e.blocks[a]] >= 0) xadj[rowOf[e.blocks[a]] + 1] += 4;
+  for (size_t g = 0; g < nGroups; ++g)
+    for (PetscInt a = gptr[g]; a < gptr[g + 1]; ++a)
+      if (rowOf[gblk[a]] >= 0) xadj[rowOf[gblk[a]] + 1] += gptr[g + 1] - gptr[g];
   for (int r = 0; r < nRows; ++r) xadj[r + 1] += xadj[r];
   adj.assign(xadj[nRows], 0);
   std::vector<PetscInt> fill(xadj.begin(), xadj.end() - 1);
-  for (const ElementRef& e : elements)
-    for (int a = 0; a < 4; ++a) {
-      const PetscInt r = rowOf[e.blocks[a]];
+  for (size_t g = 0; g < nGroups; ++g)
+    for (PetscInt a = gptr[g]; a < gptr[g + 1]; ++a) {
+      const PetscInt r = rowOf[gblk[a]];
       if (r < 0) continue;
-      for (int b = 0; b < 4; ++b) adj[fill[r]++] = colOf ? (*colOf)[e.blocks[b]] : e.blocks[b];
+      for (PetscInt b = gptr[g]; b < gptr[g + 1]; ++b) adj[fill[r]++] = colOf ? (*colOf)[gblk[b]] : gblk[b];
     }
   // sort, unique and compact each row
   PetscInt out = 0;
@@ -43,12 +60,13 @@ void buildAdjacency(const std::vector<ElementRef>& elements, int nRows, const st
   adj.resize(out);
 }
 
-std::vector<idx_t> metisPartition(const Model& model, int nParts) {
+std::vector<idx_t> metisPartition(const Model& model, const std::vector<PetscInt>& gptr, const std::vector<int>& gblk,
+                                  int nParts) {
   const int nb = model.numBlocks();
   std::vector<idx_t> part(nb, 0);
   std::vector<PetscInt> identity(nb), xadj, adj;
   for (int b = 0; b < nb; ++b) identity[b] = b;
-  buildAdjacency(model.elements(), nb, identity, true, xadj, adj);
+  buildAdjacency(gptr, gblk, nb, identity, true, xadj, adj);
   std::vector<idx_t> mx(xadj.begin(), xadj.end()), ma(adj.begin(), adj.end());
   idx_t nv = nb, ncon = 1, np = nParts, cut = 0;
   idx_t options[METIS_NOPTIONS];
@@ -67,11 +85,14 @@ DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   const int nb = model.numBlocks();
+  std::vector<PetscInt> gptr;
+  std::vector<int> gblk;
+  blockGroups(model, gptr, gblk);
   // 1. partition on rank 0, broadcast
   std::vector<int> part(nb, 0);
   if (size > 1) {
     if (rank == 0) {
-      const std::vector<idx_t> p = metisPartition(model, size);
+      const std::vector<idx_t> p = metisPartition(model, gptr, gblk, size);
       std::copy(p.begin(), p.end(), part.begin());
     }
     MPI_Bcast(part.data(), nb, MPI_INT, 0, comm);
@@ -95,6 +116,15 @@ DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()
       const PetscInt g = _global[b];
       if (g < _begin || g >= _end) _ghosts.push_back(g);
     }
+  // couplings (rigid bodies, joints): those whose first block this rank owns
+  const auto& couplings = model.couplings();
+  for (int c = 0; c < static_cast<int>(couplings.size()); ++c) {
+    const PetscInt g = _global[couplings[c].blocks[0]];
+    if (g < _begin || g >= _end) continue;
+    _localCouplings.push_back(c);
+    for (int b : couplings[c].blocks)
+      if (_global[b] < _begin || _global[b] >= _end) _ghosts.push_back(_global[b]);
+  }
   std::sort(_ghosts.begin(), _ghosts.end());
   _ghosts.erase(std::unique(_ghosts.begin(), _ghosts.end()), _ghosts.end());
   for (int e : _localElements)
@@ -102,11 +132,19 @@ DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()
       _elGlobal.push_back(_global[b]);
       _elLocal.push_back(localBlock(_global[b]));
     }
+  _cplOffset.assign(1, 0);
+  for (int c : _localCouplings) {
+    for (int b : couplings[c].blocks) {
+      _cplGlobal.push_back(_global[b]);
+      _cplLocal.push_back(localBlock(_global[b]));
+    }
+    _cplOffset.push_back(static_cast<PetscInt>(_cplGlobal.size()));
+  }
   // 4. exact preallocation of the owned block rows (every rank sees every element)
   std::vector<PetscInt> rowOf(nb, -1), xadj, adj;
   for (int b = 0; b < nb; ++b)
     if (_global[b] >= _begin && _global[b] < _end) rowOf[b] = _global[b] - _begin;
-  buildAdjacency(elements, static_cast<int>(_end - _begin), rowOf, false, xadj, adj, &_global);
+  buildAdjacency(gptr, gblk, static_cast<int>(_end - _begin), rowOf, false, xadj, adj, &_global);
   _dnnz.assign(_end - _begin, 0);
   _onnz.assign(_end - _begin, 0);
   for (PetscInt r = 0; r < _end - _begin; ++r) {

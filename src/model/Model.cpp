@@ -107,6 +107,25 @@ Model::Model(const SceneDescription& scene)
     for (int& blk : b.slopeBlock) blk = compact[root(blk)];
   }
   _numBlocks = next;
+  // rigid bodies: position block, rotation block (phi, unused); joints: their multiplier blocks
+  std::map<std::string, int> rigidIndex;
+  for (const RigidBodyDesc& rd : scene.rigidBodies) {
+    if (_dim != 2) throw InputError(rd.mark.where() + ": rigid bodies are planar (dimension: 2) in this version");
+    if (bodyIndex.count(rd.name) || rigidIndex.count(rd.name))
+      throw InputError(rd.mark.where() + ": the name '" + rd.name + "' is already used by another body");
+    rigidIndex[rd.name] = static_cast<int>(_rigid.size());
+    _rigid.push_back({rd.name, rd.mass, rd.inertia, _numBlocks, _numBlocks + 1});
+    _numBlocks += 2;
+  }
+  std::vector<int> jointCount;
+  for (const JointDesc& jd : scene.joints) {
+    const int count = jd.type == JointType::Pin ? _dim : jd.type == JointType::Distance ? 1 : 2 * _dim - 1;
+    Joint j;
+    j.label = jd.mark.where();
+    j.count = count;
+    for (int k = 0; k < (count + _dim - 1) / _dim; ++k) j.lambdaBlocks.push_back(_numBlocks++);
+    _joints.push_back(std::move(j));
+  }
   // 3. initial coordinates; junction nodes must coincide
   _q0.assign(numDofs(), 0.0);
   std::vector<char> placed(_numBlocks, 0);
@@ -128,8 +147,24 @@ Model::Model(const SceneDescription& scene)
     for (int e = 0; e < b.elements; ++e)
       _elements.push_back({static_cast<int>(bi), e, {b.posBlock[e], b.slopeBlock[e], b.posBlock[e + 1], b.slopeBlock[e + 1]}});
   }
+  for (size_t r = 0; r < _rigid.size(); ++r) {
+    const RigidBodyDesc& rd = scene.rigidBodies[r];
+    for (int i = 0; i < 2; ++i) _q0[_rigid[r].posBlock * 2 + i] = rd.position[i];
+    _q0[_rigid[r].rotBlock * 2] = rd.angle;
+  }
   // 4. supports
   _fixed.assign(numDofs(), 0);
+  _multiplier.assign(numDofs(), 0);
+  for (size_t r = 0; r < _rigid.size(); ++r) {
+    _fixed[_rigid[r].rotBlock * 2 + 1] = 1;  // the unused coordinate of the rotation block
+    for (int c : scene.rigidBodies[r].fixed) _fixed[(c < 2 ? _rigid[r].posBlock * 2 + c : _rigid[r].rotBlock * 2)] = 1;
+  }
+  for (const Joint& j : _joints)
+    for (size_t k = 0; k < j.lambdaBlocks.size(); ++k)
+      for (int i = 0; i < _dim; ++i) {
+        const bool used = static_cast<int>(k) * _dim + i < j.count;
+        (used ? _multiplier : _fixed)[j.lambdaBlocks[k] * _dim + i] = 1;
+      }
   for (const SupportDesc& s : scene.supports) {
     const Body& b = findBody(s.at.body, s.at.mark);
     const int n = nodeIndex(s.at, b);
@@ -163,6 +198,138 @@ Model::Model(const SceneDescription& scene)
   for (const DistributedLoadDesc& l : scene.loads.distributed) {
     Body& b = findBody(l.body, l.mark);
     for (int k = 0; k < 3; ++k) b.loadPerLength[k] += l.forcePerLength[k];
+  }
+  _v0.assign(numDofs(), 0.0);
+  for (size_t r = 0; r < _rigid.size(); ++r) {
+    const RigidBodyDesc& rd = scene.rigidBodies[r];
+    const RigidBody& rb = _rigid[r];
+    for (int i = 0; i < 2; ++i) {
+      _nodalForce[rb.posBlock * 2 + i] += rd.mass * _gravity[i] + rd.force[i];
+      _v0[rb.posBlock * 2 + i] = rd.velocity[i];
+    }
+    _nodalForce[rb.rotBlock * 2] += rd.torque;
+    _v0[rb.rotBlock * 2] = rd.angularVelocity;
+  }
+  // 6. joint equations (directions from the initial state), checked at the initial state
+  auto end = [&](const JointEndDesc& e, Joint& j, int* slopeBlock) -> elements::JointField {
+    elements::JointField f;
+    auto addBlock = [&](int blk) {
+      j.blocks.push_back(blk);
+      return static_cast<int>(j.blocks.size()) - 1;
+    };
+    switch (e.kind) {
+      case JointEndDesc::Kind::Ground:
+        f.kind = elements::JointField::Kind::Constant;
+        f.c = e.point;
+        break;
+      case JointEndDesc::Kind::CableNode: {
+        const Body& b = findBody(e.body, e.mark);
+        const int n = nodeIndex({e.body, e.node, e.mark}, b);
+        f.kind = elements::JointField::Kind::Block;
+        f.block = addBlock(b.posBlock[n]);
+        if (slopeBlock) *slopeBlock = b.slopeBlock[n];
+        break;
+      }
+      case JointEndDesc::Kind::RigidPoint: {
+        auto it = rigidIndex.find(e.body);
+        if (it == rigidIndex.end()) throw InputError(e.mark.where() + ": no rigid body named '" + e.body + "'");
+        const RigidBody& rb = _rigid[it->second];
+        f.kind = elements::JointField::Kind::RigidPoint;
+        f.block = addBlock(rb.posBlock);
+        addBlock(rb.rotBlock);
+        f.c = e.point;
+        break;
+      }
+    }
+    return f;
+  };
+  for (size_t k = 0; k < _joints.size(); ++k) {
+    const JointDesc& jd = scene.joints[k];
+    Joint& j = _joints[k];
+    int slope = -1;
+    elements::ConstraintEq eq;
+    eq.form = jd.type == JointType::Distance ? elements::ConstraintForm::Distance : elements::ConstraintForm::Equal;
+    eq.a = end(jd.a, j, jd.type == JointType::Clamp ? &slope : nullptr);
+    eq.b = end(jd.b, j, nullptr);
+    if (jd.type == JointType::Clamp && (jd.a.kind != JointEndDesc::Kind::CableNode || jd.b.kind == JointEndDesc::Kind::CableNode))
+      throw InputError(jd.mark.where() + ": a clamp holds a cable node (end a) to the ground or a rigid body (end b)");
+    std::vector<double> q(j.blocks.size() * _dim);
+    for (size_t b = 0; b < j.blocks.size(); ++b)
+      for (int i = 0; i < _dim; ++i) q[b * _dim + i] = _q0[j.blocks[b] * _dim + i];
+    if (jd.type == JointType::Distance) {
+      double d2 = 0.0, a[3], bv[3], da[3 * elements::kMaxJointCoordinates];
+      const int n = static_cast<int>(q.size());
+      auto fieldAt = [&](const elements::JointField& f, double* v) {
+        if (_dim == 2) elements::Constraint<2>::field(f, q.data(), n, v, da);
+        else elements::Constraint<3>::field(f, q.data(), n, v, da);
+      };
+      fieldAt(eq.a, a);
+      fieldAt(eq.b, bv);
+      for (int i = 0; i < _dim; ++i) d2 += (a[i] - bv[i]) * (a[i] - bv[i]);
+      eq.length = jd.length >= 0.0 ? jd.length : std::sqrt(d2);
+      if (eq.length <= 0.0) throw InputError(jd.mark.where() + ": a distance joint needs ends apart (length > 0)");
+    }
+    j.equations.push_back(eq);
+    if (jd.type == JointType::Clamp) {
+      // the slope keeps its initial direction t: r' . n = 0 for the normals n of t (2D: one, 3D: two)
+      const int sb = static_cast<int>(j.blocks.size());
+      j.blocks.push_back(slope);
+      Vec3 t{};
+      double len = 0.0;
+      for (int i = 0; i < _dim; ++i) len += _q0[slope * _dim + i] * _q0[slope * _dim + i];
+      for (int i = 0; i < _dim; ++i) t[i] = _q0[slope * _dim + i] / std::sqrt(len);
+      std::vector<Vec3> normals;
+      if (_dim == 2) {
+        normals.push_back({-t[1], t[0], 0.0});
+      } else {
+        const int k0 = std::fabs(t[0]) < 0.9 ? 0 : 1;  // a helper axis not parallel to t
+        Vec3 e{};
+        e[k0] = 1.0;
+        Vec3 n1{t[1] * e[2] - t[2] * e[1], t[2] * e[0] - t[0] * e[2], t[0] * e[1] - t[1] * e[0]};
+        const double l1 = std::sqrt(n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]);
+        for (double& x : n1) x /= l1;
+        normals.push_back(n1);
+        normals.push_back({t[1] * n1[2] - t[2] * n1[1], t[2] * n1[0] - t[0] * n1[2], t[0] * n1[1] - t[1] * n1[0]});
+      }
+      for (const Vec3& nrm : normals) {
+        elements::ConstraintEq o;
+        o.form = elements::ConstraintForm::Orthogonal;
+        o.a.kind = elements::JointField::Kind::Block;
+        o.a.block = sb;
+        if (jd.b.kind == JointEndDesc::Kind::Ground) {
+          o.b.kind = elements::JointField::Kind::Constant;
+          o.b.c = nrm;
+        } else {  // the normal in the rigid body's frame: R(phi0)^T n
+          const double phi = _q0[j.blocks[eq.b.block + 1] * _dim], c = std::cos(phi), s = std::sin(phi);
+          o.b.kind = elements::JointField::Kind::RigidDirection;
+          o.b.block = eq.b.block + 1;
+          o.b.c = {c * nrm[0] + s * nrm[1], -s * nrm[0] + c * nrm[1], 0.0};
+        }
+        j.equations.push_back(o);
+      }
+    }
+    // the initial state must satisfy the joint
+    std::vector<double> qq(j.blocks.size() * _dim), g(j.count), G(j.count * j.blocks.size() * _dim);
+    for (size_t b = 0; b < j.blocks.size(); ++b)
+      for (int i = 0; i < _dim; ++i) qq[b * _dim + i] = _q0[j.blocks[b] * _dim + i];
+    const int n = static_cast<int>(qq.size());
+    int row = 0;
+    for (const elements::ConstraintEq& e : j.equations) {
+      if (_dim == 2) elements::Constraint<2>::evaluate(e, qq.data(), n, &g[row], &G[row * n]);
+      else elements::Constraint<3>::evaluate(e, qq.data(), n, &g[row], &G[row * n]);
+      row += e.form == elements::ConstraintForm::Equal ? _dim : 1;
+    }
+    for (int r = 0; r < j.count; ++r)
+      if (std::fabs(g[r]) > 1e-9 * std::max(1.0, _scales.length))
+        throw InputError(jd.mark.where() + ": the initial state violates this joint by " + std::to_string(g[r]) +
+                         " (equation " + std::to_string(r) + "); place its ends together (pin, clamp) or omit `length` (distance)");
+  }
+  // 7. couplings: rigid bodies and joints
+  for (size_t r = 0; r < _rigid.size(); ++r) _couplings.push_back({static_cast<int>(r), -1, {_rigid[r].posBlock, _rigid[r].rotBlock}});
+  for (size_t k = 0; k < _joints.size(); ++k) {
+    Coupling c{-1, static_cast<int>(k), _joints[k].lambdaBlocks};
+    c.blocks.insert(c.blocks.end(), _joints[k].blocks.begin(), _joints[k].blocks.end());
+    _couplings.push_back(std::move(c));
   }
 }
 

@@ -1,5 +1,6 @@
 #include "strand/solvers/Dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -15,6 +16,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   for (const model::Body& b : assembler.model().bodies())
     _damped = _damped || b.section.dampAxial != 0.0 || b.section.dampBending != 0.0;
   _moving = !assembler.model().hubMotions().empty();
+  _constrained = assembler.hasConstraints();
   PetscCallAbort(comm, dofs.createMatrix(&_M, "dyn_mass_"));
   PetscCallAbort(comm, dofs.createMatrix(&_J, "dyn_"));
   PetscCallAbort(comm, assembler.massMatrix(_M, false));
@@ -24,6 +26,11 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, VecDuplicate(_fext, &_a0));
   PetscCallAbort(comm, VecDuplicate(_fext, &_supported));
   PetscCallAbort(comm, VecDuplicate(_fext, &_reaction));
+  PetscCallAbort(comm, VecDuplicate(_fext, &_multipliers));
+  PetscCallAbort(comm, assembler.multiplierMask(_multipliers));
+  PetscCallAbort(comm, VecDuplicate(_fext, &_notMultiplier));
+  PetscCallAbort(comm, VecSet(_notMultiplier, 1.0));
+  PetscCallAbort(comm, VecAXPY(_notMultiplier, -1.0, _multipliers));
   PetscCallAbort(comm, assembler.externalForce(_fext));
   {
     IS free;
@@ -51,6 +58,8 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, TSGetAdapt(_ts, &adapt));
   PetscCallAbort(comm, TSAdaptSetType(adapt, TSADAPTNONE));
   PetscCallAbort(comm, TSMonitorSet(_ts, monitor, this, nullptr));
+  PetscCallAbort(comm, TSSetApplicationContext(_ts, this));
+  PetscCallAbort(comm, TSSetPostStep(_ts, postStep));
 
   SNES snes;
   SNESLineSearch ls;
@@ -58,18 +67,19 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, TSGetSNES(_ts, &snes));
   PetscCallAbort(comm, SNESSetTolerances(snes, 0.0, 1e-10, 1e-12, 25, PETSC_DEFAULT));
   // as in statics: the residual has a round-off floor (StaticSolver.cpp)
-  PetscCallAbort(comm, SNESSetConvergenceTest(snes, roundoffFloorConvergence, &_fnorm0, nullptr));
+  _floor.coordinateNorm = assembler.coordinateNorm();
+  PetscCallAbort(comm, SNESSetConvergenceTest(snes, roundoffFloorConvergence, &_floor, nullptr));
   PetscCallAbort(comm, SNESGetLineSearch(snes, &ls));
   PetscCallAbort(comm, SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
-  PetscCallAbort(comm, setDirectSolverDefaults(ksp, comm));
+  PetscCallAbort(comm, setDirectSolverDefaults(ksp, comm, _constrained));
 }
 
 Dynamics::~Dynamics() {
   TSDestroy(&_ts);
   MatDestroy(&_M);
   MatDestroy(&_J);
-  for (Vec* v : {&_fext, &_w1, &_w2, &_a0, &_supported, &_reaction}) VecDestroy(v);
+  for (Vec* v : {&_fext, &_w1, &_w2, &_a0, &_supported, &_reaction, &_multipliers, &_notMultiplier}) VecDestroy(v);
 }
 
 // The scene's scheme parameters for the current TS type (ours, or PETSc's TSALPHA2 when chosen
@@ -84,6 +94,7 @@ PetscErrorCode Dynamics::applyScheme() {
   } else if (_desc.integrator == model::Integrator::GeneralizedAlpha) {
     p = GeneralizedAlphaParamsFromRadius(_desc.rhoInf);
   }
+  _params = p;
   PetscBool ours;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
   if (ours) PetscCall(GeneralizedAlphaSetParams(_ts, p.alphaM, p.alphaF, p.gamma, p.beta));
@@ -109,6 +120,8 @@ PetscErrorCode Dynamics::setFromOptions() {
              "-dyn_ts_type: the dynamics integrate a second-order system; use %s (default) or alpha2", kTsGeneralizedAlpha);
   PetscCheck(ours || !_moving, _asm.dofs().comm(), PETSC_ERR_SUP,
              "a turning hub (prescribed motion) needs -dyn_ts_type %s", kTsGeneralizedAlpha);
+  PetscCheck(ours || !_constrained, _asm.dofs().comm(), PETSC_ERR_SUP,
+             "joints (Lagrange multipliers, index 3) need -dyn_ts_type %s", kTsGeneralizedAlpha);
   if (alpha2) {  // the scene's parameters, then the -dyn_ts_alpha_* options over them
     PetscCall(applyScheme());
     PetscCall(TSSetFromOptions(_ts));
@@ -122,30 +135,67 @@ PetscErrorCode Dynamics::prescribe(PetscReal t, Vec X, void* ctx) {
   PetscFunctionReturn(0);
 }
 
-// M a0 = f_ext - f_int(u0, v0) on the free rows, a0 = the prescribed acceleration on supported rows.
-PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
+// Solves S y = b with the masked mass (joints: the saddle-point matrix [M G^T; G 0]) at state X.
+PetscErrorCode Dynamics::solveMass(Vec X, Vec b, Vec y) {
   PetscFunctionBeginUser;
   MPI_Comm comm = _asm.dofs().comm();
+  Mat S;
+  KSP ksp;
+  PetscCall(_asm.dofs().createMatrix(&S, "dyn_mass_"));
+  if (_constrained) {
+    PetscCall(_asm.saddleMatrix(X, S));
+  } else {  // masked mass with unit diagonal on supported rows
+    PetscCall(_asm.massMatrix(S, true));
+    PetscCall(MatDiagonalSet(S, _supported, ADD_VALUES));
+  }
+  PetscCall(KSPCreate(comm, &ksp));
+  PetscCall(KSPSetOptionsPrefix(ksp, "dyn_mass_"));
+  PetscCall(KSPSetOperators(ksp, S, S));
+  PetscCall(setDirectSolverDefaults(ksp, comm, _constrained));
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscCall(KSPSolve(ksp, b, y));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(MatDestroy(&S));
+  PetscFunctionReturn(0);
+}
+
+// Consistent start. Without joints: M a0 = f_ext - f_int(u0, v0) on the free rows, a0 = the
+// prescribed acceleration on supported rows. With joints (index 3): the initial velocities are
+// first projected onto the constraint manifold in the mass metric, [M G^T; G 0] [v; nu] = [M v; 0],
+// then [M G^T; G 0] [a0; lambda0] = [f_ext - f_int; -(d/dq (G v)) v] gives the accelerations and the
+// multipliers (mu0 = lambda0 / s into X): the TS's first Newton then starts at the solution of t0.
+PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
+  PetscFunctionBeginUser;
   PetscCall(VecSet(A, 0.0));
+  if (_constrained) {
+    PetscCall(VecPointwiseMult(V, V, _notMultiplier));
+    PetscCall(VecPointwiseMult(X, X, _notMultiplier));
+    PetscCall(_asm.massMatrix(_M, true));  // M v on free rows
+    PetscCall(MatMult(_M, V, _w1));
+    PetscCall(_asm.massMatrix(_M, false));
+    PetscCall(_asm.zeroSupportedRows(_w1));
+    PetscCall(solveMass(X, _w1, _w2));
+    PetscCall(VecPointwiseMult(_w2, _w2, _notMultiplier));
+    PetscCall(VecPointwiseMult(_w1, V, _supported));  // prescribed velocities stay
+    PetscCall(VecWAXPY(V, 1.0, _w1, _w2));
+  }
   PetscCall(_asm.prescribedMotion(0.0, nullptr, nullptr, A));
   PetscCall(_asm.residual(X, _damped ? V : nullptr, _w1));
   PetscCall(MatMultAdd(_M, A, _w1, _w1));
   PetscCall(_asm.zeroSupportedRows(_w1));
   PetscCall(VecScale(_w1, -1.0));
-  Mat Mfree;  // masked mass with unit diagonal on supported rows
-  KSP ksp;
-  PetscCall(_asm.dofs().createMatrix(&Mfree, "dyn_mass_"));
-  PetscCall(_asm.massMatrix(Mfree, true));
-  PetscCall(MatDiagonalSet(Mfree, _supported, ADD_VALUES));
-  PetscCall(KSPCreate(comm, &ksp));
-  PetscCall(KSPSetOptionsPrefix(ksp, "dyn_mass_"));
-  PetscCall(KSPSetOperators(ksp, Mfree, Mfree));
-  PetscCall(setDirectSolverDefaults(ksp, comm));
-  PetscCall(KSPSetFromOptions(ksp));
-  PetscCall(KSPSolve(ksp, _w1, _w2));
+  if (_constrained) {
+    PetscCall(VecPointwiseMult(_w1, _w1, _notMultiplier));
+    PetscCall(_asm.constraintVelocityTerm(X, V, _w2));
+    PetscCall(VecAXPY(_w1, -1.0, _w2));
+  }
+  PetscCall(solveMass(X, _w1, _w2));
+  if (_constrained) {  // mu0 = lambda0 / s
+    PetscCall(VecPointwiseMult(_w1, _w2, _multipliers));
+    PetscCall(VecAXPY(X, 1.0 / _asm.constraintScale(), _w1));
+    PetscCall(VecPointwiseMult(_w2, _w2, _notMultiplier));
+  }
   PetscCall(VecAXPY(A, 1.0, _w2));
-  PetscCall(KSPDestroy(&ksp));
-  PetscCall(MatDestroy(&Mfree));
   PetscFunctionReturn(0);
 }
 
@@ -240,6 +290,7 @@ PetscErrorCode Dynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X, void*
     PetscCall(SNESGetIterationNumber(snes, &s.newtonIterations));
   }
   PetscCall(self->energies(X, V, &s));
+  if (self->_constrained) PetscCall(self->_asm.constraintViolation(X, V, &s.constraintPosition, &s.constraintVelocity));
   PetscReal pd, ps;
   PetscCall(self->powers(X, V, &pd, &ps));
   const double half = 0.5 * (t - self->_last.time);
@@ -249,6 +300,25 @@ PetscErrorCode Dynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X, void*
   self->_lastDampingPower = pd;
   self->_lastSupportPower = ps;
   if (self->_onStep && *self->_onStep) PetscCall((*self->_onStep)(s, X, V));
+  // Blow-up guard: the schemes only remove energy (numerical dissipation), and a stable run's
+  // balance error is O(h^2) small; energy *created* beyond half of the largest T + |U| + |P| + |W|
+  // seen means the discrete solution has left the exact one for good (measured on the 20-link chain at
+  // rho_inf = 1: E - E0 went from -2e-3 J to 1e11 J = T within 50 steps, without a Newton failure).
+  if (step == 0) self->_e0 = s.energy();
+  self->_energyScale = std::max(self->_energyScale, s.kinetic + std::fabs(s.strain) + std::fabs(s.potential) +
+                                                        std::fabs(s.dissipated) + std::fabs(s.supportWork));
+  if (step > 0 && !(s.energy() - self->_e0 <= 0.5 * self->_energyScale)) {
+    if (self->_blowUp == 0.0) self->_blowUpAt = s;  // TSStep resets the reason: postStep stops the run
+    self->_blowUp = s.energy() - self->_e0;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Dynamics::postStep(TS ts) {
+  PetscFunctionBeginUser;
+  void* ctx;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  if (static_cast<Dynamics*>(ctx)->_blowUp > 0.0) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
   PetscFunctionReturn(0);
 }
 
@@ -260,6 +330,11 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
   PetscCall(TSSetStepNumber(_ts, 0));
   PetscCall(TSSetTimeStep(_ts, _desc.dt));
   _reactionValid = false;
+  _blowUp = _energyScale = 0.0;
+  // index-3 scaling of the joint rows: s = 1 / (beta h^2) (times (1 - alpha_m)/(1 - alpha_f)), the
+  // mass rows' shiftA, so that [shiftA M + K, s G^T; s G, 0] has balanced rows
+  if (_constrained)
+    _asm.setConstraintScale((1.0 - _params.alphaM) / ((1.0 - _params.alphaF) * _params.beta * _desc.dt * _desc.dt));
   PetscCall(_asm.prescribedMotion(0.0, X, V, nullptr));
   PetscCall(initialAcceleration(X, V, _a0));
   PetscCall(TS2SetSolution(_ts, X, V));
@@ -268,6 +343,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
   if (ours) {
     PetscCall(GeneralizedAlphaSetAcceleration(_ts, _a0));
     PetscCall(GeneralizedAlphaSetPrescribedMotion(_ts, prescribe, this));
+    if (_constrained) PetscCall(GeneralizedAlphaSetAlgebraic(_ts, _multipliers));
   }
   PetscCall(TSSolve(_ts, X));
   TSConvergedReason reason;
@@ -278,9 +354,21 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     PetscCall(TSGetSNES(_ts, &snes));
     PetscCall(SNESGetConvergedReason(snes, &sr));
     std::ostringstream msg;
-    msg << schemeName() << " stopped at t = " << _last.time << " s after step " << _last.step << " (dt " << _desc.dt
-        << " s): Newton " << SNESConvergedReasons[sr] << " in the next step (" << TSConvergedReasons[reason]
-        << "). Try a smaller dynamics.dt, rho_inf < 1 to damp the highest modes, or -dyn_snes_monitor.";
+    const bool undamped = _desc.integrator == model::Integrator::Newmark ||
+                          (_desc.integrator == model::Integrator::GeneralizedAlpha && _desc.rhoInf >= 0.99);
+    const DynamicsStep& at = _blowUp > 0.0 ? _blowUpAt : _last;
+    msg << schemeName() << " stopped at t = " << at.time << " s after step " << at.step << " (dt " << _desc.dt << " s): ";
+    if (_blowUp > 0.0)
+      msg << "energy was created: the balance grew by " << at.energy() - _e0 << " J, more than half the energy the "
+          << "system has held: the solution has blown up. ";
+    else
+      msg << "Newton " << SNESConvergedReasons[sr] << " in the next step (" << TSConvergedReasons[reason] << "). ";
+    if (_constrained && undamped)
+      msg << "Joints are index-3 constraints, and this member has no high-frequency damping (rho_inf = 1, like "
+             "the trapezoidal rule): the error of the multipliers is not damped and grows (Arnold & Bruls 2007). "
+             "Use rho_inf <= 0.9 (docs/user-guide.md, \"Joints\").";
+    else
+      msg << "Try a smaller dynamics.dt, rho_inf < 1 to damp the highest modes, or -dyn_snes_monitor.";
     *failure = msg.str();
   }
   _onStep = nullptr;

@@ -17,6 +17,7 @@ struct AlphaData {
   Vec A = nullptr, a = nullptr;  // state at ts->ptime: acceleration and acceleration-like variable
   PrescribeFn prescribe = nullptr;
   void* prescribeCtx = nullptr;
+  Vec differential = nullptr;  // 0 on algebraic entries (multipliers), 1 elsewhere; null: none
 };
 
 AlphaData* dataOf(TS ts) { return static_cast<AlphaData*>(ts->data); }
@@ -95,6 +96,8 @@ PetscErrorCode step(TS ts) {
     PetscCall(TSAdaptCheckStage(ts->adapt, ts, ts->ptime + h, X1, &accept));
     if (accept) {
       PetscCall(stageVectors(ts, X1));  // V1, A1 of the converged X1
+      if (d->differential)  // multipliers have no rate: the predictor keeps their last value
+        for (Vec v : {d->V1, d->A1, d->a1}) PetscCall(VecPointwiseMult(v, v, d->differential));
       PetscCall(VecCopy(d->V1, ts->vec_dot));
       PetscCall(VecCopy(d->A1, d->A));
       PetscCall(VecCopy(d->a1, d->a));
@@ -140,7 +143,8 @@ PetscErrorCode setUp(TS ts) {
 PetscErrorCode reset(TS ts) {
   AlphaData* d = dataOf(ts);
   PetscFunctionBeginUser;
-  for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->a0, &d->V1, &d->A1, &d->a1, &d->A, &d->a}) PetscCall(VecDestroy(v));
+  for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->a0, &d->V1, &d->A1, &d->a1, &d->A, &d->a, &d->differential})
+    PetscCall(VecDestroy(v));
   PetscFunctionReturn(0);
 }
 
@@ -248,6 +252,17 @@ PetscErrorCode GeneralizedAlphaGetAcceleration(TS ts, Vec* A) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
   *A = dataOf(ts)->A;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaSetAlgebraic(TS ts, Vec mask) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  AlphaData* d = dataOf(ts);
+  if (!d->differential) PetscCall(VecDuplicate(mask, &d->differential));
+  PetscCall(VecCopy(mask, d->differential));
+  PetscCall(VecShift(d->differential, -1.0));
+  PetscCall(VecScale(d->differential, -1.0));
   PetscFunctionReturn(0);
 }
 

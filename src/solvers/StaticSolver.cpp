@@ -1,12 +1,13 @@
 #include "strand/solvers/StaticSolver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 
 namespace strand::solvers {
 
-PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm) {
+PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm, bool saddlePoint) {
   PetscFunctionBeginUser;
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(comm, &size));
@@ -14,7 +15,7 @@ PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm) {
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCLU));
-  if (size > 1) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  if (size > 1 || saddlePoint) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   // RCM keeps the band of cable chains: at 1e5 elements 3.3 instead of 3.9 kB per element and
   // 2.4 instead of 3.0 s against the default nested dissection (docs/performance.md).
   else PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGRCM));
@@ -34,13 +35,14 @@ StaticSolver::StaticSolver(assembly::Assembler& assembler, int loadSteps) : _asm
   // it, so the residual norm first grows; a backtracking line search on ||R|| then stalls at
   // steps of 1e-3 (measured on the elastica tests). Robustness comes from load-step cutbacks.
   PetscCallAbort(dofs.comm(), SNESSetDivergenceTolerance(_snes, -1.0));
-  PetscCallAbort(dofs.comm(), SNESSetConvergenceTest(_snes, roundoffFloorConvergence, &_fnorm0, nullptr));
+  _floor.coordinateNorm = assembler.coordinateNorm();
+  PetscCallAbort(dofs.comm(), SNESSetConvergenceTest(_snes, roundoffFloorConvergence, &_floor, nullptr));
   SNESLineSearch ls;
   PetscCallAbort(dofs.comm(), SNESGetLineSearch(_snes, &ls));
   PetscCallAbort(dofs.comm(), SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
   KSP ksp;
   PetscCallAbort(dofs.comm(), SNESGetKSP(_snes, &ksp));
-  PetscCallAbort(dofs.comm(), setDirectSolverDefaults(ksp, dofs.comm()));
+  PetscCallAbort(dofs.comm(), setDirectSolverDefaults(ksp, dofs.comm(), assembler.hasConstraints()));
 }
 
 StaticSolver::~StaticSolver() {
@@ -61,21 +63,29 @@ PetscErrorCode StaticSolver::view(PetscViewer viewer) const {
   PetscFunctionReturn(0);
 }
 
-// SNESConvergedDefault, except that a small Newton correction (CONVERGED_SNORM_RELATIVE,
-// |du| < stol |u|) counts only if |R| has not grown above its value at the start of the load step:
+// SNESConvergedDefault, except that a small Newton correction counts only if |R| has not grown
+// above its value at the first iterate, and "small" is measured against the coordinates:
 //  - the residual of a position-based beam has a round-off floor: r'' = sum B2 q cancels terms of
 //    size 1/l, so |R| stalls near EI eps_mach sqrt(N) / l^2 (7.6e-6 of the load for 1000
 //    elements, docs/validation.md "Conditioning") and rtol 1e-10 is unreachable; there the Newton
 //    correction no longer changes u, which is what the step test detects;
+//  - the residual is evaluated at q = q0 + u, so u is resolved only to eps |q|: when u is still
+//    small (the first steps of a dynamic run) |du| < stol |u| is unreachable, and the joint rows
+//    s g(q) (s = 1/(beta h^2), Multibody.hpp) stall at s eps |q|. So the step test is
+//    |du| < stol max(|u|, |q0|);
 //  - with a singular tangent the iterates run away, |u| grows and |du|/|u| shrinks while |R| is
 //    1e28 (seen with an unsupported cable): the residual test rejects that.
 PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                                         SNESConvergedReason* reason, void* ctx) {
   PetscFunctionBeginUser;
-  auto* fnorm0 = static_cast<PetscReal*>(ctx);
-  if (it == 0) *fnorm0 = fnorm;
+  auto* floor = static_cast<NewtonFloor*>(ctx);
+  if (it == 0) floor->fnorm0 = fnorm;
   PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
-  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && fnorm > *fnorm0) *reason = SNES_CONVERGED_ITERATING;
+  PetscReal stol;
+  PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
+  if (*reason == SNES_CONVERGED_ITERATING && it > 0 && snorm < stol * std::max(xnorm, floor->coordinateNorm))
+    *reason = SNES_CONVERGED_SNORM_RELATIVE;
+  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && fnorm > floor->fnorm0) *reason = SNES_CONVERGED_ITERATING;
   if (!std::isfinite(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;
   PetscFunctionReturn(0);
 }

@@ -67,6 +67,39 @@ inline model::SceneDescription seed001Beam(double E, int elements, double omega0
   return sc;
 }
 
+// A planar chain of `links` uniform rigid rods (length l, mass m each, J = m l^2 / 12) lying
+// along +x from the origin, pinned to the ground at the origin and to each other end to end;
+// gravity -9.81 y. One link is the compound pendulum.
+inline model::SceneDescription rigidChain(int links, double l, double m) {
+  model::SceneDescription sc;
+  sc.file = "(test)";
+  sc.dimension = 2;
+  sc.analysis = model::Analysis::Dynamic;
+  sc.loads.gravity = {0, -9.81, 0};
+  for (int k = 0; k < links; ++k) {
+    model::RigidBodyDesc r;
+    r.name = "link" + std::to_string(k);
+    r.mass = m;
+    r.inertia = m * l * l / 12.0;
+    r.position = {(k + 0.5) * l, 0, 0};
+    sc.rigidBodies.push_back(r);
+    model::JointDesc j;
+    j.type = model::JointType::Pin;
+    j.a.kind = model::JointEndDesc::Kind::RigidPoint;
+    j.a.body = r.name;
+    j.a.point = {-0.5 * l, 0, 0};
+    if (k == 0) {
+      j.b.kind = model::JointEndDesc::Kind::Ground;
+    } else {
+      j.b.kind = model::JointEndDesc::Kind::RigidPoint;
+      j.b.body = "link" + std::to_string(k - 1);
+      j.b.point = {0.5 * l, 0, 0};
+    }
+    sc.joints.push_back(j);
+  }
+  return sc;
+}
+
 inline void addTipLoad(model::SceneDescription& sc, model::Vec3 force, model::Vec3 moment = {0, 0, 0}) {
   model::NodalLoadDesc l;
   l.at.body = sc.bodies[0].name;

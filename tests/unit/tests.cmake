@@ -5,3 +5,4 @@ strand_test(NAME unit_output_writer SOURCES unit/test_output_writer.cpp LABELS u
 strand_test(NAME unit_scene_reader SOURCES unit/test_scene_reader.cpp LABELS unit)
 target_compile_definitions(unit_scene_reader PRIVATE STRAND_DOCS_DIR="${PROJECT_SOURCE_DIR}/docs")
 strand_test(NAME unit_time_function SOURCES unit/test_time_function.cpp LABELS unit)
+strand_test(NAME unit_constraint SOURCES unit/test_constraint.cpp LABELS unit)

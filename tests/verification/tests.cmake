@@ -5,3 +5,4 @@ strand_test(NAME verify_rotating_modes SOURCES verification/test_rotating_modes.
 strand_test(NAME verify_rotating_sweep SOURCES verification/test_rotating_sweep.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_dynamics SOURCES verification/test_dynamics.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_spin_up SOURCES verification/test_spin_up.cpp LABELS verification NPROCS 1 2)
+strand_test(NAME verify_multibody SOURCES verification/test_multibody.cpp LABELS verification NPROCS 1 2)

@@ -16,6 +16,8 @@
 
 namespace strand::assembly {
 
+class Multibody;
+
 // What the rows of supported DOFs hold in a residual: the unit-row convention (the DOF value), or
 // the assembled f_int - f_ext, i.e. (with M a added) the force the support exerts on the body.
 enum class SupportRows { Value, Reaction };
@@ -32,11 +34,31 @@ public:
 
   // Initial state: zero displacement.
   PetscErrorCode initialState(Vec X) const;
+  // Initial velocities of the scene (rigid bodies' velocity keys; zero elsewhere).
+  PetscErrorCode initialVelocity(Vec V) const;
+
+  // Joints (Lagrange multipliers, src/assembly/Multibody.hpp): the multiplier unknowns are
+  // mu = lambda / s, their residual rows s g(q), the constraint forces s G^T mu. The integrator sets
+  // s (default 1) so that the constrained Newton matrix stays well conditioned.
+  void setConstraintScale(PetscReal s) { _constraintScale = s; }
+  PetscReal constraintScale() const { return _constraintScale; }
+  bool hasConstraints() const { return _model.hasConstraints(); }
+  // 1 on owned multiplier DOFs, 0 elsewhere.
+  PetscErrorCode multiplierMask(Vec mask) const;
+  // Saddle-point matrix [M G^T; G 0] (masked mass, s = 1, unit rows and columns at supports): the
+  // consistent initial accelerations and multipliers, and the projection of initial velocities.
+  PetscErrorCode saddleMatrix(Vec X, Mat S);
+  // R = 0 except on multiplier rows, where R = v^T (d^2 g_k / dq^2) v (acceleration-level
+  // constraint G a = -R).
+  PetscErrorCode constraintVelocityTerm(Vec X, Vec V, Vec R);
+  // Largest |g(q)| and |G v| over all joints (all ranks get them; 0 without joints).
+  PetscErrorCode constraintViolation(Vec X, Vec V, PetscReal* position, PetscReal* velocity);
   // Static residual R(X) = f_int(X) - loadFactor f_ext(X); supported rows X.
   PetscErrorCode staticResidual(Vec X, PetscReal loadFactor, Vec R);
   // Its Jacobian dR/dX (unit rows and columns at supports).
   PetscErrorCode staticJacobian(Vec X, PetscReal loadFactor, Mat J);
-  // Dynamic residual R(X, V) = f_int(X, V) - f_ext (elastic + Kelvin-Voigt damping, full loads);
+  // Dynamic residual R(X, V) = f_int(X, V) - f_ext (elastic + Kelvin-Voigt damping, full loads,
+  // joint forces and equations);
   // V may be null (no damping force). The inertia term M A is the integrator's.
   PetscErrorCode residual(Vec X, Vec V, Vec R, SupportRows rows = SupportRows::Value);
   // Newton matrix of an implicit integrator: K + shiftV D + shiftA M with K = df_int/dX,
@@ -57,6 +79,8 @@ public:
   // supported rows and columns are zero. The static residual and Jacobian already contain the
   // centrifugal load and its softening -Omega^2 M_P (Model::rotation()).
   PetscErrorCode gyroscopicMatrix(Mat G);
+  // |q0|, the 2-norm of the reference coordinates (all ranks): the scale of round-off in q0 + u.
+  PetscReal coordinateNorm() const;
   // Strain energy (all ranks get the sum).
   PetscErrorCode strainEnergy(Vec X, PetscReal* U);
   // Index set of the free (unsupported) DOFs owned by this rank, global numbering.
@@ -77,6 +101,10 @@ private:
   const model::Model& _model;
   const model::DofMap& _dofs;
   std::unique_ptr<Impl> _impl;
+  std::unique_ptr<Multibody> _multibody;
+  PetscReal _constraintScale = 1.0;
+  std::vector<char> _multiplierOwned;       // per owned DOF
+  std::vector<double> _v0Owned;             // initial velocities, owned DOFs
   Vec _xWork = nullptr, _rWork = nullptr, _vWork = nullptr;  // ghosted work vectors
   std::vector<char> _fixedLocal;           // per DOF of the ghosted local form
   std::vector<char> _noneFixed;            // all zero, same size

@@ -1,8 +1,8 @@
 // Parallel layout of the DOF blocks (design section 5).
 //
 // Rank 0 partitions the block graph with METIS_PartGraphKway and broadcasts the parts; every rank
-// renumbers the blocks so that each owns a contiguous range, takes the elements whose first block it
-// owns, and computes the exact block preallocation of its rows. All blocks have `dim` coordinates.
+// renumbers the blocks so that each owns a contiguous range, takes the elements and couplings (rigid
+// bodies, joints) whose first block it owns, and computes the exact block preallocation of its rows. All blocks have `dim` coordinates.
 #pragma once
 #include <petscmat.h>
 
@@ -29,6 +29,12 @@ public:
   // per local element: 4 ghosted-local block indices and 4 global block indices
   const std::vector<PetscInt>& elementLocalBlocks() const { return _elLocal; }
   const std::vector<PetscInt>& elementGlobalBlocks() const { return _elGlobal; }
+  // couplings (indices into Model::couplings()) assembled by this rank, and their blocks:
+  // local coupling k has blocks [couplingOffset()[k], couplingOffset()[k + 1]) of the two lists
+  const std::vector<int>& localCouplings() const { return _localCouplings; }
+  const std::vector<PetscInt>& couplingOffset() const { return _cplOffset; }
+  const std::vector<PetscInt>& couplingLocalBlocks() const { return _cplLocal; }
+  const std::vector<PetscInt>& couplingGlobalBlocks() const { return _cplGlobal; }
   // ghosted-local index of a global block, or -1 when this rank neither owns nor ghosts it
   PetscInt localBlock(PetscInt globalBlock) const;
 
@@ -42,7 +48,8 @@ private:
   MPI_Comm _comm;
   PetscInt _bs = 0, _nGlobal = 0, _begin = 0, _end = 0;
   std::vector<PetscInt> _global, _ghosts, _elLocal, _elGlobal;
-  std::vector<int> _localElements;
+  std::vector<int> _localElements, _localCouplings;
+  std::vector<PetscInt> _cplOffset, _cplLocal, _cplGlobal;
   std::vector<PetscInt> _dnnz, _onnz;  // block preallocation of owned block rows
 };
 

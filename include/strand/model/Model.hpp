@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "strand/elements/CableSection.hpp"
+#include "strand/elements/Constraint.hpp"
 #include "strand/model/HubMotion.hpp"
 #include "strand/model/SceneDescription.hpp"
 
@@ -30,6 +31,32 @@ struct Body {
   std::vector<double> kappa0;             // 2D reference curvature per element x Gauss point (empty: straight)
   std::vector<PointMass> pointMasses;
   Vec3 loadPerLength{};                   // gravity rho A g plus distributed loads [N/m]
+};
+
+// A planar rigid body: position block (x, y of the centre of mass) and rotation block (phi, and
+// one unused coordinate held at zero). Mass matrix diag(m, m, J).
+struct RigidBody {
+  std::string name;
+  double mass = 0.0, inertia = 0.0;
+  int posBlock = -1, rotBlock = -1;
+};
+
+// A joint: its constraint equations over the coordinates of `blocks` (concatenated, dim each), and
+// the blocks of its multipliers (equations() of them used, the rest held at zero). The unknowns of
+// the multiplier rows are mu = lambda / s, with s the constraint scale of the integrator
+// (Assembler::setConstraintScale).
+struct Joint {
+  std::string label;  // "joints[2] (pin)" for messages
+  std::vector<int> blocks, lambdaBlocks;
+  std::vector<elements::ConstraintEq> equations;
+  int count = 0;  // number of scalar equations
+};
+
+// A group of blocks coupled by one rigid body or one joint (graph, preallocation and ownership:
+// the rank that owns the first block assembles it).
+struct Coupling {
+  int rigidBody = -1, joint = -1;
+  std::vector<int> blocks;  // joint: multiplier blocks first, then the joint's blocks
 };
 
 // One element of the global element list: its body and its four blocks [r1, r1', r2, r2'].
@@ -66,6 +93,14 @@ public:
   // unknowns are displacements u = q - q0.
   const std::vector<double>& initialCoordinates() const { return _q0; }
   const std::vector<char>& fixedDofs() const { return _fixed; }          // 1 where a support holds the DOF
+  const std::vector<RigidBody>& rigidBodies() const { return _rigid; }
+  const std::vector<Joint>& joints() const { return _joints; }
+  const std::vector<Coupling>& couplings() const { return _couplings; }
+  // 1 on the multiplier DOFs that carry an equation (algebraic unknowns of the dynamics)
+  const std::vector<char>& multiplierDofs() const { return _multiplier; }
+  bool hasConstraints() const { return !_joints.empty(); }
+  // Initial velocities per DOF (model numbering; rigid bodies' velocity keys, zero elsewhere).
+  const std::vector<double>& initialVelocities() const { return _v0; }
   // Supports on turning hubs (their DOFs are among fixedDofs; the others stay at zero displacement).
   const std::vector<HubMotion>& hubMotions() const { return _hubs; }
   const std::vector<double>& nodalForces() const { return _nodalForce; } // constant nodal forces per DOF
@@ -81,7 +116,11 @@ private:
   std::vector<Body> _bodies;
   std::vector<ElementRef> _elements;
   std::vector<double> _q0, _nodalForce;
-  std::vector<char> _fixed;
+  std::vector<char> _fixed, _multiplier;
+  std::vector<RigidBody> _rigid;
+  std::vector<Joint> _joints;
+  std::vector<Coupling> _couplings;
+  std::vector<double> _v0;
   std::vector<NodalMomentLoad> _moments;
   std::vector<HubMotion> _hubs;
   Vec3 _gravity{};

@@ -93,6 +93,44 @@ struct JunctionDesc {
   SourceMark mark;
 };
 
+// A rigid body (2D: x, y of the centre of mass and the angle phi; design section 3). Its mass
+// matrix is constant, diag(m, m, J).
+struct RigidBodyDesc {
+  std::string name;
+  double mass = 0.0, inertia = 0.0;      // [kg], about the centre of mass [kg m^2]
+  Vec3 position{};                        // centre of mass [m]
+  double angle = 0.0;                     // [rad]
+  Vec3 velocity{};                        // initial velocity of the centre of mass [m/s]
+  double angularVelocity = 0.0;           // [rad/s]
+  Vec3 force{};                           // constant applied force at the centre of mass [N]
+  double torque = 0.0;                    // constant applied torque [N m]
+  std::vector<int> fixed;                 // held coordinates: 0 x, 1 y, 2 phi
+  SourceMark mark;
+};
+
+// One end of a joint: the ground (a fixed point), a cable node, or a point of a rigid body given
+// in the body frame (relative to the centre of mass).
+struct JointEndDesc {
+  enum class Kind { Ground, CableNode, RigidPoint } kind = Kind::Ground;
+  std::string body;
+  long node = 0;   // cable node (-1: the last)
+  Vec3 point{};    // ground: world point; rigid body: body-frame offset
+  SourceMark mark;
+};
+
+// Joints held by Lagrange multipliers (index 3, design section 3):
+//   pin       the two ends coincide (revolute in 2D, spherical in 3D; two cable nodes: node-to-node);
+//   distance  the ends keep the distance `length` (default: the initial distance);
+//   clamp     end a (a cable node) coincides with end b and its slope keeps its direction in b's
+//             frame (position and slope direction; the slope's length, the axial strain, stays free).
+enum class JointType { Pin, Distance, Clamp };
+struct JointDesc {
+  JointType type = JointType::Pin;
+  JointEndDesc a, b;
+  double length = -1.0;  // distance: < 0 means the initial distance
+  SourceMark mark;
+};
+
 struct NodalLoadDesc {
   NodeRef at;
   Vec3 force{}, moment{};  // 2D uses x, y of force and z of moment
@@ -177,6 +215,8 @@ struct SceneDescription {
   std::vector<BodyDesc> bodies;
   std::vector<SupportDesc> supports;
   std::vector<JunctionDesc> junctions;
+  std::vector<RigidBodyDesc> rigidBodies;
+  std::vector<JointDesc> joints;
   LoadsDesc loads;
   StaticDesc statics;
   ModesDesc modes;

@@ -16,6 +16,11 @@
 //                      beta = (1 + alpha)^2 / 4.
 // All are second order (tests/verification/test_dynamics.cpp).
 //
+// Joints (index 3, Arnold & Bruls 2007 Sec. 4): the multipliers mu = lambda / s are unknowns of
+// the TS marked algebraic; their rows s g(q) hold at the end of every step, s = shiftA. The start
+// is consistent: velocities projected onto G v = 0, accelerations and multipliers from the
+// saddle-point system. The monitor reports max |g| and max |G v|.
+//
 // Supports are eliminated: their residual rows are zero and their Jacobian rows unit, and the TS
 // sets their values at the end of each step (hub supports turn, model/HubMotion.hpp; the others
 // stay at zero). The mass matrix keeps the columns of supported DOFs, so a turning hub's
@@ -34,6 +39,8 @@
 
 #include "strand/assembly/Assembler.hpp"
 #include "strand/model/SceneDescription.hpp"
+#include "strand/solvers/GeneralizedAlpha.hpp"
+#include "strand/solvers/StaticSolver.hpp"
 
 namespace strand::solvers {
 
@@ -42,6 +49,7 @@ struct DynamicsStep {
   double time = 0.0;
   int newtonIterations = 0;
   double kinetic = 0.0, strain = 0.0, potential = 0.0, dissipated = 0.0, supportWork = 0.0;
+  double constraintPosition = 0.0, constraintVelocity = 0.0;  // max |g(q)|, max |G v| over the joints
   double energy() const { return kinetic + strain + potential + dissipated - supportWork; }
 };
 
@@ -57,7 +65,8 @@ public:
   // Applies -dyn_ts_*, -dyn_snes_*, -dyn_ksp_*, -dyn_pc_* options.
   PetscErrorCode setFromOptions();
   // Integrates from (X, V) at t = 0 to t_end; X, V then hold the last accepted state. onStep runs
-  // after the initial state and every accepted step. On failure (Newton diverged, NaN) *failure
+  // after the initial state and every accepted step. On failure (Newton diverged, NaN, or an
+  // energy created beyond half the energy the system has held: a blown-up solution) *failure
   // names the scheme, the time, the step and what to try, and X, V hold the last accepted state.
   PetscErrorCode run(Vec X, Vec V, const StepCallback& onStep, std::string* failure);
   // Energies of a state (all ranks).
@@ -72,9 +81,11 @@ private:
   static PetscErrorCode formJacobian(TS, PetscReal t, Vec U, Vec V, Vec A, PetscReal shiftV, PetscReal shiftA, Mat J,
                                      Mat P, void* ctx);
   static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec X, void* ctx);
+  static PetscErrorCode postStep(TS ts);
   static PetscErrorCode prescribe(PetscReal t, Vec X, void* ctx);
   PetscErrorCode applyScheme();
   PetscErrorCode initialAcceleration(Vec X, Vec V, Vec A);
+  PetscErrorCode solveMass(Vec X, Vec b, Vec y);
   PetscErrorCode currentAcceleration(Vec* A);
   PetscErrorCode powers(Vec X, Vec V, PetscReal* damping, PetscReal* support);
 
@@ -87,11 +98,15 @@ private:
   Vec _reaction = nullptr;   // support force of the last residual evaluation (moving supports)
   bool _reactionValid = false;
   Vec _a0 = nullptr;         // initial acceleration (kept for TS types without an acceleration state)
-  bool _damped = false, _moving = false;
+  Vec _multipliers = nullptr, _notMultiplier = nullptr;  // 1 / 0 on multiplier DOFs, and 1 - that
+  bool _damped = false, _moving = false, _constrained = false;
+  AlphaParams _params{0.0, 0.0, 0.5, 0.25};
   const StepCallback* _onStep = nullptr;
   DynamicsStep _last;
   double _lastDampingPower = 0.0, _lastSupportPower = 0.0;
-  PetscReal _fnorm0 = 0.0;  // |F| at the first Newton iterate (roundoffFloorConvergence)
+  NewtonFloor _floor;
+  double _e0 = 0.0, _energyScale = 0.0, _blowUp = 0.0;  // blow-up guard (monitor, postStep)
+  DynamicsStep _blowUpAt;  // roundoffFloorConvergence
 };
 
 }  // namespace strand::solvers

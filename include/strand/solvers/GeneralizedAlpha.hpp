@@ -26,7 +26,10 @@
 //   - prescribed motion: a callback overwrites the prescribed entries of X1 at t_{n+1} after the
 //     predictor, so rheonomic supports hold exactly at the end of the step (the residual rows of
 //     those entries must be zero, the Jacobian rows unit);
-//   - predictor X1 = X0 + h V0 + h^2/2 A0 (constant acceleration) instead of X1 = X0.
+//   - predictor X1 = X0 + h V0 + h^2/2 A0 (constant acceleration) instead of X1 = X0;
+//   - index-3 constraints (Arnold & Bruls 2007, Sec. 4): Lagrange multipliers are entries of X
+//     marked algebraic; their rows hold s g(q1) at t_{n+1}, so the position constraints hold to
+//     Newton tolerance at every step (no drift).
 #pragma once
 #include <petscts.h>
 
@@ -50,6 +53,9 @@ PetscErrorCode GeneralizedAlphaSetRadius(TS ts, PetscReal rhoInf);
 PetscErrorCode GeneralizedAlphaSetAcceleration(TS ts, Vec A);
 // The acceleration at the current TS time (borrowed; valid until the next step).
 PetscErrorCode GeneralizedAlphaGetAcceleration(TS ts, Vec* A);
+// Algebraic unknowns (mask 1: Lagrange multipliers of an index-3 system): their velocity and
+// accelerations are held at zero, so the predictor keeps their last value (copied).
+PetscErrorCode GeneralizedAlphaSetAlgebraic(TS ts, Vec mask);
 // prescribe(t, X, ctx) sets the prescribed entries of X to their values at time t.
 using PrescribeFn = PetscErrorCode (*)(PetscReal t, Vec X, void* ctx);
 PetscErrorCode GeneralizedAlphaSetPrescribedMotion(TS ts, PrescribeFn prescribe, void* ctx);

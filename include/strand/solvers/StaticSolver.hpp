@@ -14,6 +14,12 @@
 
 namespace strand::solvers {
 
+// Context of roundoffFloorConvergence: |R| at the first iterate, and |q0| (the norm of the
+// reference coordinates, which set the round-off of q = q0 + u).
+struct NewtonFloor {
+  PetscReal fnorm0 = 0.0, coordinateNorm = 0.0;
+};
+
 struct StaticStep {
   int step = 0;              // accepted load steps so far
   PetscReal loadFactor = 0;  // in (0, 1]
@@ -44,7 +50,8 @@ private:
   static PetscErrorCode formJacobian(SNES, Vec X, Mat J, Mat P, void* ctx);
   assembly::Assembler& _asm;
   int _loadSteps;
-  PetscReal _loadFactor = 0.0, _fnorm0 = 0.0;
+  PetscReal _loadFactor = 0.0;
+  NewtonFloor _floor;
   SNES _snes = nullptr;
   Mat _J = nullptr;
   Vec _R = nullptr;
@@ -57,6 +64,8 @@ PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm,
 
 // Direct-solver defaults used by every Strand solver, set only where the user gave no option:
 // PETSc's LU with RCM ordering in serial, MUMPS in parallel (design section 3).
-PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm);
+// saddlePoint: the matrix has zero diagonal blocks (Lagrange multipliers), so the factorization
+// must pivot: MUMPS on any number of ranks (PETSc's own LU does not pivot).
+PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm, bool saddlePoint = false);
 
 }  // namespace strand::solvers

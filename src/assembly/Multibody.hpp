@@ -1,0 +1,50 @@
+// Rigid bodies and joints in the assembly (internal to the Assembler; design section 3).
+//
+// Rigid bodies add their constant mass diag(m, m, J); their weight and applied loads are nodal
+// forces of the model. A joint with equations g(q) = 0 and multipliers lambda = s mu adds
+//   rows of its coordinates:  s G^T mu          (the constraint force, G = dg/dq),
+//   rows of its multipliers:  s g(q),
+// and to the Newton matrix s H(mu) = s sum_k mu_k d^2 g_k/dq^2, s G^T and s G. The scale s is the
+// integrator's (Arnold & Bruls 2007, Sec. 4: 1/(beta h^2) makes the index-3 Newton matrix as well
+// conditioned as the unconstrained one); statics use s = 1.
+#pragma once
+#include <petscmat.h>
+
+#include <vector>
+
+#include "strand/model/DofMap.hpp"
+#include "strand/model/Model.hpp"
+
+namespace strand::assembly {
+
+class Multibody {
+public:
+  Multibody(const model::Model& model, const model::DofMap& dofs, const std::vector<double>& q0Local);
+  bool empty() const { return _dofs.localCouplings().empty(); }
+
+  // r += joint terms (ghosted-local arrays; x holds displacements and mu).
+  void residual(const double* x, double scale, double* r) const;
+  // J += s H, s G^T, s G of the joints and shiftA M of the rigid bodies (rows and columns of fixed
+  // DOFs left out; gradientsOnly: no Hessian term, the saddle matrix of the initial state).
+  PetscErrorCode jacobian(const double* x, double scale, double shiftA, Mat J, const std::vector<char>& fixed,
+                          bool gradientsOnly = false) const;
+  // M += diag(m, m, J) of the rigid bodies (fixed rows and columns left out).
+  PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const;
+  // r (multiplier rows) += v^T d^2 g_k/dq^2 v: the velocity term of the acceleration-level
+  // constraint G a + (dG/dq v) v = 0.
+  void velocityTerm(const double* x, const double* v, double* r) const;
+  // Largest |g| and |G v| over this rank's joints.
+  void violation(const double* x, const double* v, double* position, double* velocity) const;
+
+private:
+  template <int D>
+  void gather(int k, const double* x, double* q) const;
+  template <int D>
+  void evaluate(int joint, const double* q, int n, double* g, double* G) const;
+
+  const model::Model& _model;
+  const model::DofMap& _dofs;
+  const std::vector<double>& _q0;
+};
+
+}  // namespace strand::assembly
