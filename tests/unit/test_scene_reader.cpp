@@ -766,3 +766,47 @@ TEST(SceneReader, HubSupportAndTimeFunctions) {
   EXPECT_TRUE(failsWith(edit(hub, "center: [0, 0], ", "center: [0, 0], axis: [0, 0, 1], "), 10,
                         "supports[0].hub.axis", "a 2D hub turns about z"));
 }
+
+TEST(SceneReader, RigidBodiesAndJoints) {
+  const std::string base = kBase2d +
+      "rigid_bodies:\n"                                                                   // 13
+      "  - {name: hub, mass: 2, inertia: 0.5, position: [-0.5, 0], angle: 0.1,\n"          // 14
+      "     velocity: [0, 1], angular_velocity: 2, fixed: [x, y]}\n"                      // 15
+      "joints:\n"                                                                         // 16
+      "  - {type: clamp, a: {body: cable, node: 0}, b: {body: hub, point: [0.5, 0]}}\n"    // 17
+      "  - {type: distance, a: {body: cable, node: last}, b: {ground: [2, 1]}, length: 1}\n";  // 18
+  const model::SceneDescription s = parseScene(base, "scene.yaml");
+  ASSERT_EQ(s.rigidBodies.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.rigidBodies[0].inertia, 0.5);
+  EXPECT_DOUBLE_EQ(s.rigidBodies[0].angularVelocity, 2.0);
+  EXPECT_EQ(s.rigidBodies[0].fixed, (std::vector<int>{0, 1}));
+  ASSERT_EQ(s.joints.size(), 2u);
+  EXPECT_EQ(s.joints[0].type, model::JointType::Clamp);
+  EXPECT_EQ(s.joints[0].b.kind, model::JointEndDesc::Kind::RigidPoint);
+  EXPECT_DOUBLE_EQ(s.joints[0].b.point[0], 0.5);
+  EXPECT_EQ(s.joints[1].a.kind, model::JointEndDesc::Kind::CableNode);
+  EXPECT_EQ(s.joints[1].a.node, -1);
+  EXPECT_DOUBLE_EQ(s.joints[1].length, 1.0);
+  EXPECT_TRUE(failsWith(edit(base, "type: clamp,", "type: hinge,"), 17, "joints[0].type",
+                        "unknown joint type 'hinge'; allowed: pin, revolute, spherical, distance, clamp"));
+  EXPECT_TRUE(failsWith(edit(base, "b: {body: hub, point: [0.5, 0]}", "b: {body: hub, node: 0}"), 17,
+                        "joints[0].b.node", "'hub' is a rigid body: give 'point' (body frame)"));
+  EXPECT_TRUE(failsWith(edit(base, "a: {body: cable, node: 0}", "a: {body: hub}"), 17, "joints[0].a",
+                        "a clamp holds a cable node"));
+  EXPECT_TRUE(failsWith(edit(base, "fixed: [x, y]", "fixed: [x, z]"), 15, "rigid_bodies[0].fixed[1]",
+                        "unknown coordinate 'z'; allowed: x, y, phi"));
+  EXPECT_TRUE(failsWith(edit(base, "mass: 2,", "mass: 0,"), 14, "rigid_bodies[0].mass", "must be positive"));
+  EXPECT_TRUE(failsWith(edit(base, "type: clamp,", "type: pin, length: 2,"), 17, "joints[0].length",
+                        "only used by type: distance"));
+  EXPECT_TRUE(failsWith(edit(base, "analysis: static", "analysis: modes"), 1, "analysis",
+                        "modal analysis of rigid bodies and joints is not supported yet"));
+  // a scene of rigid bodies only needs no cable body
+  const model::SceneDescription r = parseScene(
+      "analysis: dynamic\ndimension: 2\nrigid_bodies: [{name: rod, mass: 1, inertia: 0.1, position: [0.5, 0]}]\n"
+      "joints: [{type: pin, a: {body: rod, point: [-0.5, 0]}, b: {ground: [0, 0]}}]\ndynamics: {dt: 1e-3, t_end: 1}\n",
+      "rigid.yaml");
+  EXPECT_TRUE(r.bodies.empty());
+  EXPECT_TRUE(failsWith("analysis: dynamic\ndimension: 3\nrigid_bodies: [{name: rod, mass: 1, inertia: 0.1, "
+                        "position: [0.5, 0, 0]}]\ndynamics: {dt: 1e-3, t_end: 1}\n",
+                        3, "rigid_bodies[0]", "rigid bodies are planar in this version"));
+}
