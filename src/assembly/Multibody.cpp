@@ -7,62 +7,52 @@ namespace strand::assembly {
 
 using elements::Constraint;
 using elements::ConstraintEq;
-using elements::ConstraintForm;
+using elements::kMaxJointCoordinates;
 
 namespace {
-constexpr int kMaxBlocks = 6;  // a clamp: two multiplier blocks and four coordinate blocks
+constexpr int kMaxBlocks = 6;     // a clamp: two multiplier blocks and four coordinate blocks
+
+int equations(const ConstraintEq& e, int D) {
+  return D == 2 ? Constraint<2>::equations(e) : Constraint<3>::equations(e);
 }
+
+void addHessian(const ConstraintEq& e, const double* q, int n, const double* w, double s, double* H, int D) {
+  if (D == 2) Constraint<2>::addHessian(e, q, n, w, s, H);
+  else Constraint<3>::addHessian(e, q, n, w, s, H);
+}
+}  // namespace
 
 Multibody::Multibody(const model::Model& model, const model::DofMap& dofs, const std::vector<double>& q0Local)
     : _model(model), _dofs(dofs), _q0(q0Local) {}
 
-// q = q0 + x of the joint's coordinate blocks (after its multiplier blocks) of local coupling k.
-template <int D>
-void Multibody::gather(int k, const double* x, double* q) const {
-  const model::Joint& j = _model.joints()[_model.couplings()[_dofs.localCouplings()[k]].joint];
-  const PetscInt* lb = &_dofs.couplingLocalBlocks()[_dofs.couplingOffset()[k] + j.lambdaBlocks.size()];
-  for (size_t b = 0; b < j.blocks.size(); ++b)
-    for (int i = 0; i < D; ++i) q[b * D + i] = _q0[lb[b] * D + i] + x[lb[b] * D + i];
-}
-
-template <int D>
-void Multibody::evaluate(int joint, const double* q, int n, double* g, double* G) const {
+Multibody::JointState Multibody::state(int k, const double* x) const {
+  const int D = _model.dim();
+  JointState s;
+  s.joint = &_model.joints()[_model.couplings()[_dofs.localCouplings()[k]].joint];
+  s.lb = &_dofs.couplingLocalBlocks()[_dofs.couplingOffset()[k]];
+  s.qb = s.lb + s.joint->lambdaBlocks.size();
+  s.n = static_cast<int>(s.joint->blocks.size()) * D;
+  for (int c = 0; c < s.n; ++c) s.q[c] = _q0[s.qb[c / D] * D + c % D] + x[s.qb[c / D] * D + c % D];
   int row = 0;
-  for (const ConstraintEq& e : _model.joints()[joint].equations) {
-    Constraint<D>::evaluate(e, q, n, g + row, G + row * n);
-    row += Constraint<D>::equations(e);
+  for (const ConstraintEq& e : s.joint->equations) {
+    if (D == 2) Constraint<2>::evaluate(e, s.q, s.n, s.g + row, s.G + row * s.n);
+    else Constraint<3>::evaluate(e, s.q, s.n, s.g + row, s.G + row * s.n);
+    row += equations(e, D);
   }
+  for (int r = 0; r < s.joint->count; ++r) s.mu[r] = x[s.lb[r / D] * D + r % D];
+  return s;
 }
 
-namespace {
-// Multiplier values mu of local coupling k (the first `count` entries of its multiplier blocks).
-void gatherMu(const PetscInt* lb, int count, int D, const double* x, double* mu) {
-  for (int r = 0; r < count; ++r) mu[r] = x[lb[r / D] * D + r % D];
-}
-}  // namespace
+bool Multibody::isJoint(int k) const { return _model.couplings()[_dofs.localCouplings()[k]].joint >= 0; }
 
 void Multibody::residual(const double* x, double scale, double* r) const {
   const int D = _model.dim();
-  const auto& local = _dofs.localCouplings();
-  for (size_t k = 0; k < local.size(); ++k) {
-    const model::Coupling& c = _model.couplings()[local[k]];
-    if (c.joint < 0) continue;
-    const model::Joint& j = _model.joints()[c.joint];
-    const PetscInt* lb = &_dofs.couplingLocalBlocks()[_dofs.couplingOffset()[k]];
-    const PetscInt* qb = lb + j.lambdaBlocks.size();
-    const int n = static_cast<int>(j.blocks.size()) * D;
-    double q[elements::kMaxJointCoordinates], g[6], G[6 * elements::kMaxJointCoordinates], mu[6];
-    if (D == 2) {
-      gather<2>(static_cast<int>(k), x, q);
-      evaluate<2>(c.joint, q, n, g, G);
-    } else {
-      gather<3>(static_cast<int>(k), x, q);
-      evaluate<3>(c.joint, q, n, g, G);
-    }
-    gatherMu(lb, j.count, D, x, mu);
-    for (int e = 0; e < j.count; ++e) {
-      r[lb[e / D] * D + e % D] += scale * g[e];
-      for (int col = 0; col < n; ++col) r[qb[col / D] * D + col % D] += scale * G[e * n + col] * mu[e];
+  for (int k = 0; k < static_cast<int>(_dofs.localCouplings().size()); ++k) {
+    if (!isJoint(k)) continue;
+    const JointState s = state(k, x);
+    for (int e = 0; e < s.joint->count; ++e) {
+      r[s.lb[e / D] * D + e % D] += scale * s.g[e];
+      for (int c = 0; c < s.n; ++c) r[s.qb[c / D] * D + c % D] += scale * s.G[e * s.n + c] * s.mu[e];
     }
   }
 }
@@ -73,41 +63,29 @@ PetscErrorCode Multibody::jacobian(const double* x, double scale, double shiftA,
   const int D = _model.dim();
   const auto& local = _dofs.localCouplings();
   double Ke[(kMaxBlocks * 3) * (kMaxBlocks * 3)];
-  for (size_t k = 0; k < local.size(); ++k) {
+  for (int k = 0; k < static_cast<int>(local.size()); ++k) {
     const model::Coupling& c = _model.couplings()[local[k]];
     const PetscInt off = _dofs.couplingOffset()[k];
     const PetscInt* lb = &_dofs.couplingLocalBlocks()[off];
     const int nb = static_cast<int>(c.blocks.size()), N = nb * D;
     std::fill(Ke, Ke + N * N, 0.0);
     if (c.rigidBody >= 0) {
-      const model::RigidBody& rb = _model.rigidBodies()[c.rigidBody];
-      Ke[0 * N + 0] = Ke[1 * N + 1] = shiftA * rb.mass;  // blocks (x, y), (phi, unused)
-      Ke[2 * N + 2] = shiftA * rb.inertia;
+      rigidMass(c.rigidBody, shiftA, Ke);
     } else {
-      const model::Joint& j = _model.joints()[c.joint];
-      const int L = static_cast<int>(j.lambdaBlocks.size()) * D, n = N - L;
-      double q[elements::kMaxJointCoordinates], g[6], G[6 * elements::kMaxJointCoordinates], mu[6];
-      double H[elements::kMaxJointCoordinates * elements::kMaxJointCoordinates] = {};
-      if (D == 2) {
-        gather<2>(static_cast<int>(k), x, q);
-        evaluate<2>(c.joint, q, n, g, G);
-      } else {
-        gather<3>(static_cast<int>(k), x, q);
-        evaluate<3>(c.joint, q, n, g, G);
-      }
-      gatherMu(lb, j.count, D, x, mu);
+      const JointState s = state(k, x);
+      const int L = N - s.n;  // multiplier coordinates come first
+      double H[kMaxJointCoordinates * kMaxJointCoordinates] = {};
       if (!gradientsOnly) {
         int row = 0;
-        for (const ConstraintEq& e : j.equations) {
-          if (D == 2) Constraint<2>::addHessian(e, q, n, mu + row, scale, H);
-          else Constraint<3>::addHessian(e, q, n, mu + row, scale, H);
-          row += e.form == ConstraintForm::Equal ? D : 1;
+        for (const ConstraintEq& e : s.joint->equations) {
+          addHessian(e, s.q, s.n, s.mu + row, scale, H, D);
+          row += equations(e, D);
         }
       }
-      for (int r = 0; r < n; ++r)
-        for (int col = 0; col < n; ++col) Ke[(L + r) * N + L + col] = H[r * n + col];
-      for (int e = 0; e < j.count; ++e)
-        for (int col = 0; col < n; ++col) Ke[e * N + L + col] = Ke[(L + col) * N + e] = scale * G[e * n + col];
+      for (int r = 0; r < s.n; ++r)
+        for (int col = 0; col < s.n; ++col) Ke[(L + r) * N + L + col] = H[r * s.n + col];
+      for (int e = 0; e < s.joint->count; ++e)
+        for (int col = 0; col < s.n; ++col) Ke[e * N + L + col] = Ke[(L + col) * N + e] = scale * s.G[e * s.n + col];
     }
     for (int a = 0; a < nb; ++a)  // supports and unused slots: their unit diagonal is added elsewhere
       for (int i = 0; i < D; ++i)
@@ -119,18 +97,25 @@ PetscErrorCode Multibody::jacobian(const double* x, double scale, double shiftA,
   PetscFunctionReturn(0);
 }
 
+// s diag(m, m, J, 0) over the blocks (x, y), (phi, unused): 4 x 4, row-major.
+void Multibody::rigidMass(int body, double s, double* Ke) const {
+  const model::RigidBody& rb = _model.rigidBodies()[body];
+  Ke[0 * 4 + 0] = Ke[1 * 4 + 1] = s * rb.mass;
+  Ke[2 * 4 + 2] = s * rb.inertia;
+}
+
 PetscErrorCode Multibody::mass(Mat M, const std::vector<char>& fixed) const {
   PetscFunctionBeginUser;
   const auto& local = _dofs.localCouplings();
-  for (size_t k = 0; k < local.size(); ++k) {
+  for (int k = 0; k < static_cast<int>(local.size()); ++k) {
     const model::Coupling& c = _model.couplings()[local[k]];
     if (c.rigidBody < 0) continue;
-    const model::RigidBody& rb = _model.rigidBodies()[c.rigidBody];
     const PetscInt* lb = &_dofs.couplingLocalBlocks()[_dofs.couplingOffset()[k]];
     const PetscInt* gb = &_dofs.couplingGlobalBlocks()[_dofs.couplingOffset()[k]];
     double Ke[16] = {};
-    const double diag[4] = {rb.mass, rb.mass, rb.inertia, 0.0};
-    for (int i = 0; i < 4; ++i) Ke[i * 4 + i] = fixed[lb[i / 2] * 2 + i % 2] ? 0.0 : diag[i];
+    rigidMass(c.rigidBody, 1.0, Ke);
+    for (int i = 0; i < 4; ++i)
+      if (fixed[lb[i / 2] * 2 + i % 2]) Ke[i * 4 + i] = 0.0;
     PetscCall(MatSetValuesBlocked(M, 2, gb, 2, gb, Ke, ADD_VALUES));
   }
   PetscFunctionReturn(0);
@@ -138,30 +123,21 @@ PetscErrorCode Multibody::mass(Mat M, const std::vector<char>& fixed) const {
 
 void Multibody::velocityTerm(const double* x, const double* v, double* r) const {
   const int D = _model.dim();
-  const auto& local = _dofs.localCouplings();
-  for (size_t k = 0; k < local.size(); ++k) {
-    const model::Coupling& c = _model.couplings()[local[k]];
-    if (c.joint < 0) continue;
-    const model::Joint& j = _model.joints()[c.joint];
-    const PetscInt* lb = &_dofs.couplingLocalBlocks()[_dofs.couplingOffset()[k]];
-    const PetscInt* qb = lb + j.lambdaBlocks.size();
-    const int n = static_cast<int>(j.blocks.size()) * D;
-    double q[elements::kMaxJointCoordinates], ve[elements::kMaxJointCoordinates];
-    if (D == 2) gather<2>(static_cast<int>(k), x, q);
-    else gather<3>(static_cast<int>(k), x, q);
-    for (int col = 0; col < n; ++col) ve[col] = v[qb[col / D] * D + col % D];
+  for (int k = 0; k < static_cast<int>(_dofs.localCouplings().size()); ++k) {
+    if (!isJoint(k)) continue;
+    const JointState s = state(k, x);
+    double ve[kMaxJointCoordinates];
+    for (int c = 0; c < s.n; ++c) ve[c] = v[s.qb[c / D] * D + c % D];
     int row = 0;
-    for (const ConstraintEq& e : j.equations) {
-      const int m = e.form == ConstraintForm::Equal ? D : 1;
-      for (int i = 0; i < m; ++i, ++row) {
-        double w[3] = {0.0, 0.0, 0.0}, H[elements::kMaxJointCoordinates * elements::kMaxJointCoordinates] = {};
+    for (const ConstraintEq& e : s.joint->equations) {
+      for (int i = 0; i < equations(e, D); ++i, ++row) {  // v^T (d^2 g_row / dq^2) v, one row at a time
+        double w[3] = {0.0, 0.0, 0.0}, H[kMaxJointCoordinates * kMaxJointCoordinates] = {};
         w[i] = 1.0;
-        if (D == 2) Constraint<2>::addHessian(e, q, n, w, 1.0, H);
-        else Constraint<3>::addHessian(e, q, n, w, 1.0, H);
+        addHessian(e, s.q, s.n, w, 1.0, H, D);
         double vHv = 0.0;
-        for (int a = 0; a < n; ++a)
-          for (int b = 0; b < n; ++b) vHv += ve[a] * H[a * n + b] * ve[b];
-        r[lb[row / D] * D + row % D] += vHv;
+        for (int a = 0; a < s.n; ++a)
+          for (int b = 0; b < s.n; ++b) vHv += ve[a] * H[a * s.n + b] * ve[b];
+        r[s.lb[row / D] * D + row % D] += vHv;
       }
     }
   }
@@ -170,25 +146,13 @@ void Multibody::velocityTerm(const double* x, const double* v, double* r) const 
 void Multibody::violation(const double* x, const double* v, double* position, double* velocity) const {
   const int D = _model.dim();
   *position = *velocity = 0.0;
-  const auto& local = _dofs.localCouplings();
-  for (size_t k = 0; k < local.size(); ++k) {
-    const model::Coupling& c = _model.couplings()[local[k]];
-    if (c.joint < 0) continue;
-    const model::Joint& j = _model.joints()[c.joint];
-    const PetscInt* qb = &_dofs.couplingLocalBlocks()[_dofs.couplingOffset()[k] + j.lambdaBlocks.size()];
-    const int n = static_cast<int>(j.blocks.size()) * D;
-    double q[elements::kMaxJointCoordinates], g[6], G[6 * elements::kMaxJointCoordinates];
-    if (D == 2) {
-      gather<2>(static_cast<int>(k), x, q);
-      evaluate<2>(c.joint, q, n, g, G);
-    } else {
-      gather<3>(static_cast<int>(k), x, q);
-      evaluate<3>(c.joint, q, n, g, G);
-    }
-    for (int e = 0; e < j.count; ++e) {
+  for (int k = 0; k < static_cast<int>(_dofs.localCouplings().size()); ++k) {
+    if (!isJoint(k)) continue;
+    const JointState s = state(k, x);
+    for (int e = 0; e < s.joint->count; ++e) {
       double gv = 0.0;
-      for (int col = 0; col < n; ++col) gv += G[e * n + col] * v[qb[col / D] * D + col % D];
-      *position = std::max(*position, std::fabs(g[e]));
+      for (int c = 0; c < s.n; ++c) gv += s.G[e * s.n + c] * v[s.qb[c / D] * D + c % D];
+      *position = std::max(*position, std::fabs(s.g[e]));
       *velocity = std::max(*velocity, std::fabs(gv));
     }
   }

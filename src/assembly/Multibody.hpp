@@ -37,10 +37,19 @@ public:
   void violation(const double* x, const double* v, double* position, double* velocity) const;
 
 private:
-  template <int D>
-  void gather(int k, const double* x, double* q) const;
-  template <int D>
-  void evaluate(int joint, const double* q, int n, double* g, double* G) const;
+  // A local joint at x: its coordinates q = q0 + x, g, G (row-major, count x n), and mu.
+  struct JointState {
+    const model::Joint* joint = nullptr;
+    const PetscInt* lb = nullptr;  // ghosted-local blocks: multipliers first
+    const PetscInt* qb = nullptr;  // ... then the joint's coordinate blocks
+    int n = 0;                     // number of coordinates
+    double q[elements::kMaxJointCoordinates];
+    static constexpr int kMaxEquations = 6;  // a 3D clamp has 5
+    double g[kMaxEquations], G[kMaxEquations * elements::kMaxJointCoordinates], mu[kMaxEquations];
+  };
+  JointState state(int localCoupling, const double* x) const;
+  bool isJoint(int localCoupling) const;
+  void rigidMass(int body, double s, double* Ke) const;
 
   const model::Model& _model;
   const model::DofMap& _dofs;

@@ -41,6 +41,23 @@ void referenceStrains(Body& body, const std::vector<double>& q0, int gaussPoints
   }
 }
 
+// Values of the constraint equations `eqs` over `blocks` at the coordinates q (model numbering).
+std::vector<double> constraintValues(const std::vector<elements::ConstraintEq>& eqs, const std::vector<int>& blocks,
+                                     const std::vector<double>& q, int dim) {
+  const int n = static_cast<int>(blocks.size()) * dim;
+  std::vector<double> qe(n), g, G(3 * n);
+  for (size_t b = 0; b < blocks.size(); ++b)
+    for (int i = 0; i < dim; ++i) qe[b * dim + i] = q[blocks[b] * dim + i];
+  for (const elements::ConstraintEq& e : eqs) {
+    double ge[3];
+    const int m = dim == 2 ? elements::Constraint<2>::equations(e) : elements::Constraint<3>::equations(e);
+    if (dim == 2) elements::Constraint<2>::evaluate(e, qe.data(), n, ge, G.data());
+    else elements::Constraint<3>::evaluate(e, qe.data(), n, ge, G.data());
+    g.insert(g.end(), ge, ge + m);
+  }
+  return g;
+}
+
 }  // namespace
 
 Model::Model(const SceneDescription& scene)
@@ -253,20 +270,8 @@ Model::Model(const SceneDescription& scene)
     eq.b = end(jd.b, j, nullptr);
     if (jd.type == JointType::Clamp && (jd.a.kind != JointEndDesc::Kind::CableNode || jd.b.kind == JointEndDesc::Kind::CableNode))
       throw InputError(jd.mark.where() + ": a clamp holds a cable node (end a) to the ground or a rigid body (end b)");
-    std::vector<double> q(j.blocks.size() * _dim);
-    for (size_t b = 0; b < j.blocks.size(); ++b)
-      for (int i = 0; i < _dim; ++i) q[b * _dim + i] = _q0[j.blocks[b] * _dim + i];
-    if (jd.type == JointType::Distance) {
-      double d2 = 0.0, a[3], bv[3], da[3 * elements::kMaxJointCoordinates];
-      const int n = static_cast<int>(q.size());
-      auto fieldAt = [&](const elements::JointField& f, double* v) {
-        if (_dim == 2) elements::Constraint<2>::field(f, q.data(), n, v, da);
-        else elements::Constraint<3>::field(f, q.data(), n, v, da);
-      };
-      fieldAt(eq.a, a);
-      fieldAt(eq.b, bv);
-      for (int i = 0; i < _dim; ++i) d2 += (a[i] - bv[i]) * (a[i] - bv[i]);
-      eq.length = jd.length >= 0.0 ? jd.length : std::sqrt(d2);
+    if (jd.type == JointType::Distance) {  // with length 0 the equation's value is the distance
+      eq.length = jd.length >= 0.0 ? jd.length : constraintValues({eq}, j.blocks, _q0, _dim)[0];
       if (eq.length <= 0.0) throw InputError(jd.mark.where() + ": a distance joint needs ends apart (length > 0)");
     }
     j.equations.push_back(eq);
@@ -309,16 +314,7 @@ Model::Model(const SceneDescription& scene)
       }
     }
     // the initial state must satisfy the joint
-    std::vector<double> qq(j.blocks.size() * _dim), g(j.count), G(j.count * j.blocks.size() * _dim);
-    for (size_t b = 0; b < j.blocks.size(); ++b)
-      for (int i = 0; i < _dim; ++i) qq[b * _dim + i] = _q0[j.blocks[b] * _dim + i];
-    const int n = static_cast<int>(qq.size());
-    int row = 0;
-    for (const elements::ConstraintEq& e : j.equations) {
-      if (_dim == 2) elements::Constraint<2>::evaluate(e, qq.data(), n, &g[row], &G[row * n]);
-      else elements::Constraint<3>::evaluate(e, qq.data(), n, &g[row], &G[row * n]);
-      row += e.form == elements::ConstraintForm::Equal ? _dim : 1;
-    }
+    const std::vector<double> g = constraintValues(j.equations, j.blocks, _q0, _dim);
     for (int r = 0; r < j.count; ++r)
       if (std::fabs(g[r]) > 1e-9 * std::max(1.0, _scales.length))
         throw InputError(jd.mark.where() + ": the initial state violates this joint by " + std::to_string(g[r]) +

@@ -135,27 +135,25 @@ PetscErrorCode Dynamics::prescribe(PetscReal t, Vec X, void* ctx) {
   PetscFunctionReturn(0);
 }
 
-// Solves S y = b with the masked mass (joints: the saddle-point matrix [M G^T; G 0]) at state X.
-PetscErrorCode Dynamics::solveMass(Vec X, Vec b, Vec y) {
+// A direct solver for the masked mass with unit diagonal on supported rows, or with joints the
+// saddle-point matrix [M G^T; G 0] at state X (the KSP keeps the matrix).
+PetscErrorCode Dynamics::createMassSolver(Vec X, KSP* ksp) {
   PetscFunctionBeginUser;
   MPI_Comm comm = _asm.dofs().comm();
   Mat S;
-  KSP ksp;
   PetscCall(_asm.dofs().createMatrix(&S, "dyn_mass_"));
   if (_constrained) {
     PetscCall(_asm.saddleMatrix(X, S));
-  } else {  // masked mass with unit diagonal on supported rows
+  } else {
     PetscCall(_asm.massMatrix(S, true));
     PetscCall(MatDiagonalSet(S, _supported, ADD_VALUES));
   }
-  PetscCall(KSPCreate(comm, &ksp));
-  PetscCall(KSPSetOptionsPrefix(ksp, "dyn_mass_"));
-  PetscCall(KSPSetOperators(ksp, S, S));
-  PetscCall(setDirectSolverDefaults(ksp, comm, _constrained));
-  PetscCall(KSPSetFromOptions(ksp));
-  PetscCall(KSPSolve(ksp, b, y));
-  PetscCall(KSPDestroy(&ksp));
+  PetscCall(KSPCreate(comm, ksp));
+  PetscCall(KSPSetOptionsPrefix(*ksp, "dyn_mass_"));
+  PetscCall(KSPSetOperators(*ksp, S, S));
   PetscCall(MatDestroy(&S));
+  PetscCall(setDirectSolverDefaults(*ksp, comm, _constrained));
+  PetscCall(KSPSetFromOptions(*ksp));
   PetscFunctionReturn(0);
 }
 
@@ -164,21 +162,25 @@ PetscErrorCode Dynamics::solveMass(Vec X, Vec b, Vec y) {
 // first projected onto the constraint manifold in the mass metric, [M G^T; G 0] [v; nu] = [M v; 0],
 // then [M G^T; G 0] [a0; lambda0] = [f_ext - f_int; -(d/dq (G v)) v] gives the accelerations and the
 // multipliers (mu0 = lambda0 / s into X): the TS's first Newton then starts at the solution of t0.
+// One factorization serves both solves.
 PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
   PetscFunctionBeginUser;
-  PetscCall(VecSet(A, 0.0));
   if (_constrained) {
     PetscCall(VecPointwiseMult(V, V, _notMultiplier));
     PetscCall(VecPointwiseMult(X, X, _notMultiplier));
-    PetscCall(_asm.massMatrix(_M, true));  // M v on free rows
-    PetscCall(MatMult(_M, V, _w1));
-    PetscCall(_asm.massMatrix(_M, false));
-    PetscCall(_asm.zeroSupportedRows(_w1));
-    PetscCall(solveMass(X, _w1, _w2));
-    PetscCall(VecPointwiseMult(_w2, _w2, _notMultiplier));
-    PetscCall(VecPointwiseMult(_w1, V, _supported));  // prescribed velocities stay
-    PetscCall(VecWAXPY(V, 1.0, _w1, _w2));
   }
+  KSP ksp;
+  PetscCall(createMassSolver(X, &ksp));
+  if (_constrained) {
+    PetscCall(VecPointwiseMult(_w2, V, _supported));  // prescribed velocities stay
+    PetscCall(VecWAXPY(A, -1.0, _w2, V));              // free velocities (A is scratch here)
+    PetscCall(MatMult(_M, A, _w1));                    // M_ff v_f on the free rows
+    PetscCall(_asm.zeroSupportedRows(_w1));
+    PetscCall(KSPSolve(ksp, _w1, V));
+    PetscCall(VecPointwiseMult(V, V, _notMultiplier));
+    PetscCall(VecAXPY(V, 1.0, _w2));
+  }
+  PetscCall(VecSet(A, 0.0));
   PetscCall(_asm.prescribedMotion(0.0, nullptr, nullptr, A));
   PetscCall(_asm.residual(X, _damped ? V : nullptr, _w1));
   PetscCall(MatMultAdd(_M, A, _w1, _w1));
@@ -189,7 +191,8 @@ PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
     PetscCall(_asm.constraintVelocityTerm(X, V, _w2));
     PetscCall(VecAXPY(_w1, -1.0, _w2));
   }
-  PetscCall(solveMass(X, _w1, _w2));
+  PetscCall(KSPSolve(ksp, _w1, _w2));
+  PetscCall(KSPDestroy(&ksp));
   if (_constrained) {  // mu0 = lambda0 / s
     PetscCall(VecPointwiseMult(_w1, _w2, _multipliers));
     PetscCall(VecAXPY(X, 1.0 / _asm.constraintScale(), _w1));

@@ -142,7 +142,9 @@ TEST(Multibody, CompoundPendulumFollowsItsEquationOfMotionAtSecondOrder) {
     std::printf("%-12s rate %.3f, energy error rate %.3f\n", mb.name, rate, energyRate);
     EXPECT_NEAR(rate, 2.0, 0.15) << mb.name;
     // without numerical dissipation the energy error is that of a second-order method: bounded, O(h^2)
-    if (mb.rho == 1.0 && mb.integrator != model::Integrator::Hht) EXPECT_NEAR(energyRate, 2.0, 0.15) << mb.name;
+    if (mb.rho == 1.0 && mb.integrator != model::Integrator::Hht) {
+      EXPECT_NEAR(energyRate, 2.0, 0.15) << mb.name;
+    }
   }
 }
 

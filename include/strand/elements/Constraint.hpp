@@ -122,19 +122,21 @@ struct Constraint {
 
   // H += s sum_k w_k d^2 g_k / dq^2 (n x n).
   static void addHessian(const ConstraintEq& k, const double* q, int n, const double* w, double s, double* H) {
+    if (k.form == ConstraintForm::Equal) {  // g = a - b: only the fields' own curvature
+      double mw[D];
+      for (int i = 0; i < D; ++i) mw[i] = -w[i];
+      addFieldHessian(k.a, q, n, w, s, H);
+      addFieldHessian(k.b, q, n, mw, s, H);
+      return;
+    }
     double a[D], b[D], da[D * kMax], db[D * kMax];
+    field(k.a, q, n, a, da);
+    field(k.b, q, n, b, db);
     switch (k.form) {
-      case ConstraintForm::Equal: {
-        double mw[D];
-        for (int i = 0; i < D; ++i) mw[i] = -w[i];
-        addFieldHessian(k.a, q, n, w, s, H);
-        addFieldHessian(k.b, q, n, mw, s, H);
+      case ConstraintForm::Equal:
         return;
-      }
       case ConstraintForm::Distance: {
         // g = |d|, d = a - b: d^2 g = (Dd^T (I - e e^T) Dd) / |d| + sum_i e_i d^2 d_i, e = d / |d|
-        field(k.a, q, n, a, da);
-        field(k.b, q, n, b, db);
         double d[D], e[D], len = 0.0, Dd[D * kMax];
         for (int i = 0; i < D; ++i) {
           d[i] = a[i] - b[i];
@@ -166,8 +168,6 @@ struct Constraint {
       }
       case ConstraintForm::Orthogonal: {
         // g = a . b: d^2 g = da^T db + db^T da + sum_i b_i d^2 a_i + sum_i a_i d^2 b_i
-        field(k.a, q, n, a, da);
-        field(k.b, q, n, b, db);
         const double sw = s * w[0];
         for (int r = 0; r < n; ++r)
           for (int c = 0; c < n; ++c) {

@@ -85,7 +85,7 @@ private:
   static PetscErrorCode prescribe(PetscReal t, Vec X, void* ctx);
   PetscErrorCode applyScheme();
   PetscErrorCode initialAcceleration(Vec X, Vec V, Vec A);
-  PetscErrorCode solveMass(Vec X, Vec b, Vec y);
+  PetscErrorCode createMassSolver(Vec X, KSP* ksp);
   PetscErrorCode currentAcceleration(Vec* A);
   PetscErrorCode powers(Vec X, Vec V, PetscReal* damping, PetscReal* support);
 
