@@ -63,8 +63,11 @@ TEST(TimeFunction, DerivativesMatchCentralDifferences) {
         err[k][0] = std::fabs(d1 - f.at(t).df);
         err[k][1] = std::fabs(d2 - f.at(t).ddf);
       }
-      for (int j = 0; j < 2; ++j)
-        if (err[0][j] > 1e-11) EXPECT_NEAR(err[0][j] / err[1][j], 4.0, 0.2) << f.name() << " t " << t << " derivative " << j + 1;
+      for (int j = 0; j < 2; ++j) {
+        if (err[0][j] > 1e-11) {
+          EXPECT_NEAR(err[0][j] / err[1][j], 4.0, 0.2) << f.name() << " t " << t << " derivative " << j + 1;
+        }
+      }
     }
   }
 }
