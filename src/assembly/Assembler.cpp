@@ -30,7 +30,7 @@ struct Assembler::Impl {
   virtual void residual(const double* x, const double* v, double loadFactor, double* r) const = 0;
   virtual PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const = 0;
   virtual PetscErrorCode dynamicJacobian(const double* x, const double* v, double shiftV, double shiftA, Mat J,
-                                         const std::vector<char>& fixed) const = 0;
+                                         Mat Dmat, const std::vector<char>& fixed) const = 0;
   virtual PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const = 0;
   virtual PetscErrorCode gyroscopic(Mat G, const std::vector<char>& fixed) const = 0;
   virtual double strainEnergy(const double* x) const = 0;
@@ -196,7 +196,7 @@ public:
 
   // Dynamic tangent K + shiftV D + shiftA M (K = df_int/du, D = df_int/dv, consistent mass M):
   // one pass over the elements for the Newton matrix of an implicit integrator.
-  PetscErrorCode dynamicJacobian(const double* x, const double* v, double shiftV, double shiftA, Mat J,
+  PetscErrorCode dynamicJacobian(const double* x, const double* v, double shiftV, double shiftA, Mat J, Mat Dmat,
                                  const std::vector<char>& fixed) const override {
     PetscFunctionBeginUser;
     const auto& els = _model.elements();
@@ -209,11 +209,17 @@ public:
       if (v) gatherVelocity(static_cast<int>(k), v, ve);
       const bool damped = v && (b.section.dampAxial != 0.0 || b.section.dampBending != 0.0);
       E::tangent(b.section, geometry(b, er.index), _tab, q0, u, v ? ve : nullptr, nullptr, K, damped ? Dm : nullptr);
-      if (damped)
+      const PetscInt* gb = &_dofs.elementGlobalBlocks()[4 * k];
+      if (damped) {
         for (int i = 0; i < N * N; ++i) K[i] += shiftV * Dm[i];
+        if (Dmat) {
+          maskFixed(static_cast<int>(k), fixed, Dm);
+          PetscCall(MatSetValuesBlocked(Dmat, 4, gb, 4, gb, Dm, ADD_VALUES));
+        }
+      }
       addMassBlocks(er, b, shiftA, _identity, K);
       maskFixed(static_cast<int>(k), fixed, K);
-      PetscCall(MatSetValuesBlocked(J, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], K, ADD_VALUES));
+      PetscCall(MatSetValuesBlocked(J, 4, gb, 4, gb, K, ADD_VALUES));
     }
     PetscFunctionReturn(0);
   }
@@ -561,7 +567,7 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscReal shiftA, Mat J) {
+PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evDynJacobian, 0, 0, 0, 0));
   Vec xl, vl = nullptr;
@@ -570,11 +576,16 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscR
   PetscCall(beginLocal(X, _xWork, &xl, &x));
   if (V) PetscCall(beginLocal(V, _vWork, &vl, &v));
   PetscCall(MatZeroEntries(J));
-  PetscCall(_impl->dynamicJacobian(x, v, shiftV, shiftA, J, _fixedLocal));
+  if (D) PetscCall(MatZeroEntries(D));
+  PetscCall(_impl->dynamicJacobian(x, v, shiftV, shiftA, J, D, _fixedLocal));
   PetscCall(_multibody->jacobian(x, _constraintScale, shiftA, J, _fixedLocal));
   PetscCall(endLocal(_xWork, &xl, &x));
   if (V) PetscCall(endLocal(_vWork, &vl, &v));
   PetscCall(assembleWithSupportDiagonal(J));
+  if (D) {
+    PetscCall(MatAssemblyBegin(D, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(D, MAT_FINAL_ASSEMBLY));
+  }
   PetscCall(PetscLogEventEnd(evDynJacobian, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

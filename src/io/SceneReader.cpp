@@ -333,7 +333,10 @@ const Choice<model::Analysis> kAnalyses[] = {{"static", model::Analysis::Static}
 
 const Choice<model::Integrator> kIntegrators[] = {{"generalized_alpha", model::Integrator::GeneralizedAlpha},
                                                   {"newmark", model::Integrator::Newmark},
-                                                  {"hht", model::Integrator::Hht}};
+                                                  {"hht", model::Integrator::Hht},
+                                                  {"bdf", model::Integrator::Bdf},
+                                                  {"rk4", model::Integrator::Rk4},
+                                                  {"abm4", model::Integrator::Abm4}};
 
 const Choice<model::JointType> kJointTypes[] = {{"pin", model::JointType::Pin},
                                                  {"revolute", model::JointType::Pin},
@@ -653,10 +656,12 @@ private:
   }
 
   void readDynamics(const Field& f) {
-    f.expectMap({"integrator", "rho_inf", "hht_alpha", "dt", "t_end", "output_every"});
+    f.expectMap({"integrator", "rho_inf", "hht_alpha", "bdf_order", "adaptive", "rtol", "atol", "dt", "t_end",
+                 "output_every"});
     model::DynamicsDesc& d = scene_.dynamics;
     d.mark = f.mark();
-    if (const Field i = f.child("integrator"); i.present()) d.integrator = pick(i, "integrator", kIntegrators).value;
+    const Field integrator = f.child("integrator");
+    if (integrator.present()) d.integrator = pick(integrator, "integrator", kIntegrators).value;
     if (const Field r = f.child("rho_inf"); r.present()) {
       if (d.integrator != model::Integrator::GeneralizedAlpha) r.fail("only used by integrator: generalized_alpha");
       d.rhoInf = r.number();
@@ -667,6 +672,26 @@ private:
       d.hhtAlpha = a.number();
       if (!(d.hhtAlpha >= 0.0 && d.hhtAlpha <= 1.0 / 3.0)) a.fail("must lie in [0, 1/3] (HHT stability range)");
     }
+    if (const Field o = f.child("bdf_order"); o.present()) {
+      if (d.integrator != model::Integrator::Bdf) o.fail("only used by integrator: bdf");
+      d.bdfOrder = requireIntAtLeast(o, 1);
+      if (d.bdfOrder > 5) o.fail("must lie in 1..5 (BDF of order 6 and above is not zero-stable)");
+    }
+    if (const Field a = f.child("adaptive"); a.present()) {
+      if (d.integrator != model::Integrator::Bdf) a.fail("only used by integrator: bdf (the other integrators take fixed steps)");
+      d.adaptive = a.boolean();
+    }
+    for (const char* key : {"rtol", "atol"})
+      if (const Field t = f.child(key); t.present()) {
+        if (!d.adaptive) t.fail("only used with integrator: bdf and adaptive: true");
+        (std::string(key) == "rtol" ? d.rtol : d.atol) = requirePositive(t);
+      }
+    if (model::isFirstOrder(d.integrator) && !scene_.joints.empty())
+      integrator.fail(d.integrator == model::Integrator::Bdf
+                          ? "BDF with joints (the stabilized index-2 form) is not implemented yet; use generalized_alpha "
+                            "with rho_inf <= 0.9 for scenes with joints"
+                          : "explicit integrators (rk4, abm4) take problems without joints (no Lagrange multipliers); "
+                            "use generalized_alpha with rho_inf <= 0.9 for scenes with joints");
     d.dt = requirePositive(f.child("dt"));
     d.tEnd = requirePositive(f.child("t_end"));
     if (d.dt > d.tEnd) f.child("dt").fail("larger than t_end");

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "strand/solvers/AdamsBashforthMoulton.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
 #include "strand/solvers/StaticSolver.hpp"
 
@@ -40,27 +41,67 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
     PetscCallAbort(comm, ISDestroy(&free));
   }
 
+  _firstOrder = model::isFirstOrder(desc.integrator);
+  _explicit = model::isExplicit(desc.integrator);
+  const bool adaptive = desc.integrator == model::Integrator::Bdf && desc.adaptive;
+  switch (desc.integrator) {
+    case model::Integrator::Newmark: _schemeName = "Newmark (average acceleration)"; break;
+    case model::Integrator::Hht: _schemeName = "HHT-alpha"; break;
+    case model::Integrator::Bdf:
+      _schemeName = "BDF" + std::to_string(desc.bdfOrder) + (adaptive ? " (adaptive step)" : " (fixed step)");
+      break;
+    case model::Integrator::Rk4: _schemeName = "RK4 (explicit)"; break;
+    case model::Integrator::Abm4: _schemeName = "Adams-Bashforth-Moulton 4 (explicit)"; break;
+    default: _schemeName = "generalized-alpha";
+  }
+
   PetscCallAbort(comm, GeneralizedAlphaRegister());
+  PetscCallAbort(comm, AdamsBashforthMoultonRegister());
   PetscCallAbort(comm, TSCreate(comm, &_ts));
   PetscCallAbort(comm, TSSetOptionsPrefix(_ts, "dyn_"));
-  PetscCallAbort(comm, TSSetType(_ts, kTsGeneralizedAlpha));
-  PetscCallAbort(comm, TSSetI2Function(_ts, nullptr, formFunction, this));
-  PetscCallAbort(comm, TSSetI2Jacobian(_ts, _J, _J, formJacobian, this));
-  PetscCallAbort(comm, applyScheme());
+  if (_firstOrder) {
+    PetscCallAbort(comm, createMassSolver(_fext, &_massSolver));
+    _space = std::make_unique<StateSpace>(assembler, _M, _supported, _massSolver, _damped);
+    PetscCallAbort(comm, _space->createState(&_Y));
+    if (desc.integrator == model::Integrator::Bdf) {
+      PetscCallAbort(comm, TSSetType(_ts, TSBDF));
+      PetscCallAbort(comm, TSBDFSetOrder(_ts, desc.bdfOrder));
+    } else if (desc.integrator == model::Integrator::Rk4) {
+      PetscCallAbort(comm, TSSetType(_ts, TSRK));
+      PetscCallAbort(comm, TSRKSetType(_ts, TSRK4));
+    } else {
+      PetscCallAbort(comm, TSSetType(_ts, kTsAdamsBashforthMoulton));
+    }
+  } else {
+    PetscCallAbort(comm, TSSetType(_ts, kTsGeneralizedAlpha));
+    PetscCallAbort(comm, TSSetI2Function(_ts, nullptr, formFunction, this));
+    PetscCallAbort(comm, TSSetI2Jacobian(_ts, _J, _J, formJacobian, this));
+    PetscCallAbort(comm, applyScheme());
+  }
   PetscCallAbort(comm, TSSetTimeStep(_ts, desc.dt));
   PetscCallAbort(comm, TSSetMaxTime(_ts, desc.tEnd));
-  PetscCallAbort(comm, TSSetMaxSteps(_ts, static_cast<PetscInt>(std::ceil(desc.tEnd / desc.dt - 1e-9)) + 1));
+  PetscCallAbort(comm, TSSetMaxSteps(_ts, adaptive ? PETSC_MAX_INT - 1
+                                                   : static_cast<PetscInt>(std::ceil(desc.tEnd / desc.dt - 1e-9)) + 1));
   PetscCallAbort(comm, TSSetExactFinalTime(_ts, TS_EXACTFINALTIME_MATCHSTEP));
-  // fixed step: the first Newton failure ends the run with a message instead of a silent cut
-  PetscCallAbort(comm, TSSetMaxSNESFailures(_ts, 1));
+  // fixed step: the first Newton failure ends the run with a message instead of a silent cut;
+  // adaptive: a failed Newton is a rejected step, retried with a smaller one
+  PetscCallAbort(comm, TSSetMaxSNESFailures(_ts, adaptive ? -1 : 1));
   PetscCallAbort(comm, TSSetErrorIfStepFails(_ts, PETSC_FALSE));
   TSAdapt adapt;
   PetscCallAbort(comm, TSGetAdapt(_ts, &adapt));
-  PetscCallAbort(comm, TSAdaptSetType(adapt, TSADAPTNONE));
+  PetscCallAbort(comm, TSAdaptSetType(adapt, adaptive ? TSADAPTBASIC : TSADAPTNONE));
+  if (adaptive) {
+    PetscCallAbort(comm, TSSetTolerances(_ts, desc.atol, nullptr, desc.rtol, nullptr));
+    PetscCallAbort(comm, TSAdaptSetStepLimits(adapt, 1e-10 * desc.dt, desc.tEnd));
+  }
   PetscCallAbort(comm, TSMonitorSet(_ts, monitor, this, nullptr));
   PetscCallAbort(comm, TSSetApplicationContext(_ts, this));
   PetscCallAbort(comm, TSSetPostStep(_ts, postStep));
 
+  if (_explicit) {
+    PetscCallAbort(comm, _space->setExplicit(_ts));
+    return;
+  }
   SNES snes;
   SNESLineSearch ls;
   KSP ksp;
@@ -73,10 +114,15 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
   PetscCallAbort(comm, setDirectSolverDefaults(ksp, comm, _constrained));
+  if (_firstOrder) PetscCallAbort(comm, _space->setImplicit(_ts));  // the exact Schur-complement solve
 }
 
 Dynamics::~Dynamics() {
   TSDestroy(&_ts);
+  _space.reset();
+  KSPDestroy(&_massSolver);
+  VecDestroy(&_Y);
+  VecDestroy(&_acc);
   MatDestroy(&_M);
   MatDestroy(&_J);
   for (Vec* v : {&_fext, &_w1, &_w2, &_a0, &_supported, &_reaction, &_multipliers, &_notMultiplier}) VecDestroy(v);
@@ -102,20 +148,18 @@ PetscErrorCode Dynamics::applyScheme() {
   PetscFunctionReturn(0);
 }
 
-const char* Dynamics::schemeName() const {
-  switch (_desc.integrator) {
-    case model::Integrator::Newmark: return "Newmark (average acceleration)";
-    case model::Integrator::Hht: return "HHT-alpha";
-    default: return "generalized-alpha";
-  }
-}
-
 PetscErrorCode Dynamics::setFromOptions() {
   PetscFunctionBeginUser;
   PetscCall(TSSetFromOptions(_ts));
   PetscBool ours, alpha2;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2));
+  if (_firstOrder) {
+    PetscCheck(!ours && !alpha2, _asm.dofs().comm(), PETSC_ERR_SUP,
+               "-dyn_ts_type: integrator %s works on the first-order form y = (u, v); choose a first-order TS "
+               "(bdf, rk, %s, ...) or change the scene's integrator", _schemeName.c_str(), kTsAdamsBashforthMoulton);
+    PetscFunctionReturn(0);
+  }
   PetscCheck(ours || alpha2, _asm.dofs().comm(), PETSC_ERR_SUP,
              "-dyn_ts_type: the dynamics integrate a second-order system; use %s (default) or alpha2", kTsGeneralizedAlpha);
   PetscCheck(ours || !_moving, _asm.dofs().comm(), PETSC_ERR_SUP,
@@ -213,6 +257,16 @@ PetscErrorCode Dynamics::currentAcceleration(Vec* A) {
 
 PetscErrorCode Dynamics::supportForce(Vec F) {
   PetscFunctionBeginUser;
+  if (_firstOrder) {
+    Vec Y, X, V;
+    PetscReal t;
+    PetscCall(TSGetSolution(_ts, &Y));
+    PetscCall(TSGetTime(_ts, &t));
+    PetscCall(_space->view(Y, &X, &V));
+    PetscCall(supportForceAt(t, X, V, F));
+    PetscCall(_space->releaseView(Y));
+    PetscFunctionReturn(0);
+  }
   if (_reactionValid) {  // from the last residual of the step (formFunction), at the same state
     PetscCall(VecCopy(_reaction, F));
     PetscFunctionReturn(0);
@@ -222,6 +276,17 @@ PetscErrorCode Dynamics::supportForce(Vec F) {
   PetscCall(currentAcceleration(&A));
   PetscCall(_asm.residual(X, _damped ? V : nullptr, F, assembly::SupportRows::Reaction));
   PetscCall(MatMultAdd(_M, A, F, F));
+  PetscCall(VecPointwiseMult(F, F, _supported));
+  PetscFunctionReturn(0);
+}
+
+// f_s = M a + f_int - f_ext on supported rows, with a from the state (StateSpace::acceleration).
+PetscErrorCode Dynamics::supportForceAt(PetscReal t, Vec X, Vec V, Vec F) {
+  PetscFunctionBeginUser;
+  if (!_acc) PetscCall(VecDuplicate(_fext, &_acc));
+  PetscCall(_space->acceleration(t, X, V, _acc));
+  PetscCall(_asm.residual(X, _damped ? V : nullptr, F, assembly::SupportRows::Reaction));
+  PetscCall(MatMultAdd(_M, _acc, F, F));
   PetscCall(VecPointwiseMult(F, F, _supported));
   PetscFunctionReturn(0);
 }
@@ -250,7 +315,7 @@ PetscErrorCode Dynamics::formJacobian(TS, PetscReal, Vec U, Vec V, Vec, PetscRea
 
 // v . f_d with the Kelvin-Voigt force f_d = f_int(u, v) - f_int(u, 0), and v . f_s with the
 // support force f_s (supportForce).
-PetscErrorCode Dynamics::powers(Vec X, Vec V, PetscReal* damping, PetscReal* support) {
+PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support) {
   PetscFunctionBeginUser;
   *damping = *support = 0.0;
   if (_damped) {
@@ -261,7 +326,8 @@ PetscErrorCode Dynamics::powers(Vec X, Vec V, PetscReal* damping, PetscReal* sup
     PetscCall(VecDot(_w1, V, damping));
   }
   if (_moving) {
-    PetscCall(supportForce(_w1));
+    if (_firstOrder) PetscCall(supportForceAt(t, X, V, _w1));
+    else PetscCall(supportForce(_w1));
     PetscCall(VecDot(_w1, V, support));
   }
   PetscFunctionReturn(0);
@@ -282,20 +348,40 @@ PetscErrorCode Dynamics::energies(Vec X, Vec V, DynamicsStep* s) {
 PetscErrorCode Dynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
-  Vec V;
-  PetscCall(TS2GetSolution(ts, nullptr, &V));
+  if (self->_firstOrder) {  // X is the state (u, v)
+    Vec U, V;
+    PetscCall(self->_space->view(X, &U, &V));
+    PetscCall(self->monitorState(step, t, U, V));
+    PetscCall(self->_space->releaseView(X));
+  } else {
+    Vec V;
+    PetscCall(TS2GetSolution(ts, nullptr, &V));
+    PetscCall(self->monitorState(step, t, X, V));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) {
+  PetscFunctionBeginUser;
+  Dynamics* self = this;
   DynamicsStep s;
   s.step = static_cast<int>(step);
   s.time = t;
   if (step > 0) {
-    SNES snes;
-    PetscCall(TSGetSNES(ts, &snes));
-    PetscCall(SNESGetIterationNumber(snes, &s.newtonIterations));
+    s.timeStep = t - _last.time;
+    if (!_explicit) {
+      SNES snes;
+      PetscCall(TSGetSNES(_ts, &snes));
+      PetscCall(SNESGetIterationNumber(snes, &s.newtonIterations));
+    }
+    PetscInt rejected;
+    PetscCall(TSGetStepRejections(_ts, &rejected));
+    s.rejectedSteps = static_cast<int>(rejected);
   }
   PetscCall(self->energies(X, V, &s));
   if (self->_constrained) PetscCall(self->_asm.constraintViolation(X, V, &s.constraintPosition, &s.constraintVelocity));
   PetscReal pd, ps;
-  PetscCall(self->powers(X, V, &pd, &ps));
+  PetscCall(self->powers(t, X, V, &pd, &ps));
   const double half = 0.5 * (t - self->_last.time);
   s.dissipated = step > 0 ? self->_last.dissipated + half * (pd + self->_lastDampingPower) : 0.0;
   s.supportWork = step > 0 ? self->_last.supportWork + half * (ps + self->_lastSupportPower) : 0.0;
@@ -321,12 +407,22 @@ PetscErrorCode Dynamics::postStep(TS ts) {
   PetscFunctionBeginUser;
   void* ctx;
   PetscCall(TSGetApplicationContext(ts, &ctx));
-  if (static_cast<Dynamics*>(ctx)->_blowUp > 0.0) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
+  auto* self = static_cast<Dynamics*>(ctx);
+  if (self->_explicit && self->_moving) {  // supported DOFs exactly on the prescribed motion
+    Vec Y;
+    PetscReal t;
+    PetscCall(TSGetSolution(ts, &Y));
+    PetscCall(TSGetTime(ts, &t));
+    PetscCall(self->_space->prescribe(t, Y));
+  }
+  if (self->_blowUp > 0.0) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::string* failure) {
   PetscFunctionBeginUser;
+  PetscCheck(!(_firstOrder && _constrained), _asm.dofs().comm(), PETSC_ERR_SUP,
+             "%s: joints (Lagrange multipliers) need integrator generalized_alpha", _schemeName.c_str());
   failure->clear();
   _onStep = &onStep;
   PetscCall(TSSetTime(_ts, 0.0));
@@ -334,47 +430,120 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
   PetscCall(TSSetTimeStep(_ts, _desc.dt));
   _reactionValid = false;
   _blowUp = _energyScale = 0.0;
-  // index-3 scaling of the joint rows: s = 1 / (beta h^2) (times (1 - alpha_m)/(1 - alpha_f)), the
-  // mass rows' shiftA, so that [shiftA M + K, s G^T; s G, 0] has balanced rows
-  if (_constrained)
-    _asm.setConstraintScale((1.0 - _params.alphaM) / ((1.0 - _params.alphaF) * _params.beta * _desc.dt * _desc.dt));
   PetscCall(_asm.prescribedMotion(0.0, X, V, nullptr));
-  PetscCall(initialAcceleration(X, V, _a0));
-  PetscCall(TS2SetSolution(_ts, X, V));
-  PetscBool ours;
-  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
-  if (ours) {
-    PetscCall(GeneralizedAlphaSetAcceleration(_ts, _a0));
-    PetscCall(GeneralizedAlphaSetPrescribedMotion(_ts, prescribe, this));
-    if (_constrained) PetscCall(GeneralizedAlphaSetAlgebraic(_ts, _multipliers));
+  Vec X0 = nullptr;  // explicit schemes: the initial state, for the stability estimate of a failure
+  if (_firstOrder) {
+    if (_explicit) {
+      PetscCall(VecDuplicate(X, &X0));
+      PetscCall(VecCopy(X, X0));
+    }
+    PetscCall(_space->pack(X, V, _Y));
+    PetscCall(TSSetSolution(_ts, _Y));
+    PetscCall(TSSolve(_ts, _Y));
+    PetscCall(_space->unpack(_Y, X, V));
+  } else {
+    // index-3 scaling of the joint rows: s = 1 / (beta h^2) (times (1 - alpha_m)/(1 - alpha_f)),
+    // the mass rows' shiftA, so that [shiftA M + K, s G^T; s G, 0] has balanced rows
+    if (_constrained)
+      _asm.setConstraintScale((1.0 - _params.alphaM) / ((1.0 - _params.alphaF) * _params.beta * _desc.dt * _desc.dt));
+    PetscCall(initialAcceleration(X, V, _a0));
+    PetscCall(TS2SetSolution(_ts, X, V));
+    PetscBool ours;
+    PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
+    if (ours) {
+      PetscCall(GeneralizedAlphaSetAcceleration(_ts, _a0));
+      PetscCall(GeneralizedAlphaSetPrescribedMotion(_ts, prescribe, this));
+      if (_constrained) PetscCall(GeneralizedAlphaSetAlgebraic(_ts, _multipliers));
+    }
+    PetscCall(TSSolve(_ts, X));
   }
-  PetscCall(TSSolve(_ts, X));
   TSConvergedReason reason;
   PetscCall(TSGetConvergedReason(_ts, &reason));
   if (reason < 0) {
-    SNES snes;
-    SNESConvergedReason sr;
-    PetscCall(TSGetSNES(_ts, &snes));
-    PetscCall(SNESGetConvergedReason(snes, &sr));
     std::ostringstream msg;
-    const bool undamped = _desc.integrator == model::Integrator::Newmark ||
-                          (_desc.integrator == model::Integrator::GeneralizedAlpha && _desc.rhoInf >= 0.99);
     const DynamicsStep& at = _blowUp > 0.0 ? _blowUpAt : _last;
-    msg << schemeName() << " stopped at t = " << at.time << " s after step " << at.step << " (dt " << _desc.dt << " s): ";
-    if (_blowUp > 0.0)
+    msg << schemeName() << " stopped at t = " << at.time << " s after step " << at.step << " (dt "
+        << (at.timeStep > 0.0 ? at.timeStep : _desc.dt) << " s): ";
+    if (_blowUp > 0.0) {
       msg << "energy was created: the balance grew by " << at.energy() - _e0 << " J, more than half the energy the "
           << "system has held: the solution has blown up. ";
-    else
-      msg << "Newton " << SNESConvergedReasons[sr] << " in the next step (" << TSConvergedReasons[reason] << "). ";
-    if (_constrained && undamped)
-      msg << "Joints are index-3 constraints, and this member has no high-frequency damping (rho_inf = 1, like "
-             "the trapezoidal rule): the error of the multipliers is not damped and grows (Arnold & Bruls 2007). "
-             "Use rho_inf <= 0.9 (docs/user-guide.md, \"Joints\").";
-    else
-      msg << "Try a smaller dynamics.dt, rho_inf < 1 to damp the highest modes, or -dyn_snes_monitor.";
+    } else if (_explicit) {
+      msg << "the step was rejected (" << TSConvergedReasons[reason] << "). ";
+    } else {
+      SNES snes;
+      SNESConvergedReason sr;
+      PetscCall(TSGetSNES(_ts, &snes));
+      PetscCall(SNESGetConvergedReason(snes, &sr));
+      if (_desc.integrator == model::Integrator::Bdf && _desc.adaptive)
+        msg << "the adaptive step was rejected more than the TS allows in a row, last by Newton "
+            << SNESConvergedReasons[sr] << " (" << TSConvergedReasons[reason] << "). ";
+      else
+        msg << "Newton " << SNESConvergedReasons[sr] << " in the next step (" << TSConvergedReasons[reason] << "). ";
+    }
+    if (_explicit) {
+      PetscReal omega = 0.0;
+      PetscCall(highestFrequency(X0, &omega));
+      msg << "This scheme is explicit; the highest frequency of the model is omega_max ~ " << omega
+          << " rad/s (from the initial state), so dt omega_max = " << _desc.dt * omega << ". ";
+      if (_desc.integrator == model::Integrator::Rk4) {
+        msg << "RK4 is stable only while dt omega_max <= 2 sqrt(2) = 2.83 (undamped modes; 2.79 for damped ones), "
+            << "i.e. dt <= " << 2.0 * std::sqrt(2.0) / omega << " s. ";
+      } else {
+        // AdamsBashforthMoulton.hpp: undamped modes grow by 1 + 0.16 (h omega)^6 per step; growth
+        // by e over the run needs 0.16 (h omega)^6 t_end / h <= 1
+        const double dtSafe = std::pow(0.16 * std::pow(omega, 6) * _desc.tEnd, -0.2);
+        msg << "Adams-Bashforth-Moulton 4 (PECE) amplifies undamped oscillations by about 1 + 0.16 (dt omega)^6 "
+            << "per step (and is unstable beyond dt omega = 1.28 for damped ones): the highest mode grew from "
+            << "round-off. dt <= " << dtSafe << " s keeps its growth below a factor e over t_end; RK4 damps "
+            << "these modes instead. ";
+      }
+      msg << "Use a smaller dynamics.dt, or an implicit integrator (generalized_alpha, bdf) whose step accuracy "
+             "alone sets (docs/user-guide.md, \"Dynamics\").";
+    } else {
+      msg << failureHint(at);
+    }
     *failure = msg.str();
   }
+  PetscCall(VecDestroy(&X0));
   _onStep = nullptr;
+  PetscFunctionReturn(0);
+}
+
+std::string Dynamics::failureHint(const DynamicsStep&) const {
+  const bool undamped = _desc.integrator == model::Integrator::Newmark ||
+                        (_desc.integrator == model::Integrator::GeneralizedAlpha && _desc.rhoInf >= 0.99);
+  if (_constrained && undamped)
+    return "Joints are index-3 constraints, and this member has no high-frequency damping (rho_inf = 1, like "
+           "the trapezoidal rule): the error of the multipliers is not damped and grows (Arnold & Bruls 2007). "
+           "Use rho_inf <= 0.9 (docs/user-guide.md, \"Joints\").";
+  if (_desc.integrator == model::Integrator::Bdf)
+    return _desc.adaptive ? "Try tighter rtol/atol, a smaller first dynamics.dt, or -dyn_snes_monitor."
+                          : "Try a smaller dynamics.dt, adaptive: true, or -dyn_snes_monitor.";
+  return "Try a smaller dynamics.dt, rho_inf < 1 to damp the highest modes, or -dyn_snes_monitor.";
+}
+
+// omega_max^2 = the largest eigenvalue of M^{-1} K at state X (free DOFs), by power iteration with
+// the factored mass: a lower bound that the iteration approaches from below (an estimate for the
+// failure message of an explicit scheme, not a verified number).
+PetscErrorCode Dynamics::highestFrequency(Vec X, PetscReal* omega) {
+  PetscFunctionBeginUser;
+  PetscCall(_asm.dynamicJacobian(X, nullptr, 0.0, 0.0, _J));  // K (unit rows at supports)
+  Vec z, w;
+  PetscCall(VecDuplicate(X, &z));
+  PetscCall(VecDuplicate(X, &w));
+  PetscCall(VecSetRandom(z, nullptr));
+  PetscCall(_asm.zeroSupportedRows(z));
+  PetscReal lambda = 0.0, norm;
+  for (int k = 0; k < 200; ++k) {
+    PetscCall(VecNormalize(z, &norm));
+    PetscCall(MatMult(_J, z, w));
+    PetscCall(_asm.zeroSupportedRows(w));
+    PetscCall(KSPSolve(_massSolver, w, z));
+    PetscCall(VecNorm(z, NORM_2, &lambda));
+  }
+  *omega = std::sqrt(lambda);
+  PetscCall(VecDestroy(&z));
+  PetscCall(VecDestroy(&w));
   PetscFunctionReturn(0);
 }
 

@@ -725,8 +725,27 @@ TEST(SceneReader, DynamicsSection) {
                         "only used by integrator: generalized_alpha"));
   EXPECT_TRUE(failsWith(edit(dyn, "integrator: generalized_alpha, rho_inf: 0.8", "integrator: hht, hht_alpha: 0.5"), 13,
                         "dynamics.hht_alpha", "must lie in [0, 1/3]"));
-  EXPECT_TRUE(failsWith(edit(dyn, "integrator: generalized_alpha", "integrator: rk4"), 13, "dynamics.integrator",
-                        "unknown integrator 'rk4'; allowed: generalized_alpha, newmark, hht"));
+  EXPECT_TRUE(failsWith(edit(dyn, "integrator: generalized_alpha", "integrator: euler"), 13, "dynamics.integrator",
+                        "unknown integrator 'euler'; allowed: generalized_alpha, newmark, hht, bdf, rk4, abm4"));
+  // the first-order integrators and their keys
+  const std::string bdf = edit(dyn, "integrator: generalized_alpha, rho_inf: 0.8",
+                               "integrator: bdf, bdf_order: 3, adaptive: true, rtol: 1e-5, atol: 1e-8");
+  const model::SceneDescription b = parseScene(bdf, "scene.yaml");
+  EXPECT_EQ(b.dynamics.integrator, model::Integrator::Bdf);
+  EXPECT_EQ(b.dynamics.bdfOrder, 3);
+  EXPECT_TRUE(b.dynamics.adaptive);
+  EXPECT_DOUBLE_EQ(b.dynamics.rtol, 1e-5);
+  EXPECT_DOUBLE_EQ(b.dynamics.atol, 1e-8);
+  EXPECT_EQ(parseScene(edit(dyn, "integrator: generalized_alpha, rho_inf: 0.8", "integrator: abm4"), "s.yaml")
+                .dynamics.integrator,
+            model::Integrator::Abm4);
+  EXPECT_TRUE(failsWith(edit(bdf, "bdf_order: 3", "bdf_order: 6"), 13, "dynamics.bdf_order", "must lie in 1..5"));
+  EXPECT_TRUE(failsWith(edit(bdf, "integrator: bdf", "integrator: rk4"), 13, "dynamics.bdf_order",
+                        "only used by integrator: bdf"));
+  EXPECT_TRUE(failsWith(edit(bdf, "adaptive: true", "adaptive: false"), 13, "dynamics.rtol",
+                        "only used with integrator: bdf and adaptive: true"));
+  EXPECT_TRUE(failsWith(edit(dyn, "integrator: generalized_alpha, rho_inf: 0.8", "integrator: rk4, adaptive: true"), 13,
+                        "dynamics.adaptive", "only used by integrator: bdf"));
   EXPECT_TRUE(failsWith(edit(dyn, "dt: 1e-3", "dt: 3"), 13, "dynamics.dt", "larger than t_end"));
   EXPECT_TRUE(failsWith(edit(dyn, "dt: 1e-3", "dt: -1"), 13, "dynamics.dt", "must be positive"));
 }
@@ -806,6 +825,14 @@ TEST(SceneReader, RigidBodiesAndJoints) {
       "joints: [{type: pin, a: {body: rod, point: [-0.5, 0]}, b: {ground: [0, 0]}}]\ndynamics: {dt: 1e-3, t_end: 1}\n",
       "rigid.yaml");
   EXPECT_TRUE(r.bodies.empty());
+  // the first-order integrators take no joints (no multipliers); the message says what to use
+  const std::string pinned =
+      "analysis: dynamic\ndimension: 2\nrigid_bodies: [{name: rod, mass: 1, inertia: 0.1, position: [0.5, 0]}]\n"
+      "joints: [{type: pin, a: {body: rod, point: [-0.5, 0]}, b: {ground: [0, 0]}}]\n"
+      "dynamics: {integrator: rk4, dt: 1e-3, t_end: 1}\n";  // line 5
+  EXPECT_TRUE(failsWith(pinned, 5, "dynamics.integrator", "explicit integrators (rk4, abm4) take problems without joints"));
+  EXPECT_TRUE(failsWith(edit(pinned, "rk4", "bdf"), 5, "dynamics.integrator",
+                        "BDF with joints (the stabilized index-2 form) is not implemented yet"));
   EXPECT_TRUE(failsWith("analysis: dynamic\ndimension: 3\nrigid_bodies: [{name: rod, mass: 1, inertia: 0.1, "
                         "position: [0.5, 0, 0]}]\ndynamics: {dt: 1e-3, t_end: 1}\n",
                         3, "rigid_bodies[0]", "rigid bodies are planar in this version"));

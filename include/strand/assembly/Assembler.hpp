@@ -62,8 +62,9 @@ public:
   // V may be null (no damping force). The inertia term M A is the integrator's.
   PetscErrorCode residual(Vec X, Vec V, Vec R, SupportRows rows = SupportRows::Value);
   // Newton matrix of an implicit integrator: K + shiftV D + shiftA M with K = df_int/dX,
-  // D = df_int/dV (Kelvin-Voigt), M the consistent mass; unit rows and columns at supports.
-  PetscErrorCode dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscReal shiftA, Mat J);
+  // D = df_int/dV (Kelvin-Voigt), M the consistent mass; unit rows and columns at supports. With
+  // D non-null (and V given), D alone is assembled there too (zero rows and columns at supports).
+  PetscErrorCode dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D = nullptr);
   // The constant applied loads f_ext (gravity, distributed and nodal forces) at the reference state;
   // nodal moments are evaluated there too (they follow the slope, so they are not constant).
   PetscErrorCode externalForce(Vec F);

@@ -184,19 +184,29 @@ struct SweepDesc {
   SourceMark mark;
 };
 
-// Time integration (analysis: dynamic). One scheme family, generalized-alpha for second-order
-// systems (Chung & Hulbert 1993, PETSc TSALPHA2): Newmark's average acceleration and HHT are
-// parameter choices of it (docs/user-guide.md, "Dynamics").
-enum class Integrator { GeneralizedAlpha, Newmark, Hht };
+// Time integration (analysis: dynamic). Two families (docs/user-guide.md, "Dynamics"):
+//  - generalized-alpha for second-order systems (Arnold & Bruls 2007), fixed step, index-3 joints;
+//    Newmark's average acceleration and HHT are parameter choices of it;
+//  - the first-order form y = (u, v) (solvers/StateSpace.hpp), no joints: BDF orders 1-5 (PETSc
+//    TSBDF, fixed or adaptive step), the classical explicit Runge-Kutta RK4 (TSRK) and the
+//    4th-order Adams-Bashforth-Moulton predictor-corrector of seed 001 (solvers/AdamsBashforthMoulton.hpp).
+enum class Integrator { GeneralizedAlpha, Newmark, Hht, Bdf, Rk4, Abm4 };
 struct DynamicsDesc {
   Integrator integrator = Integrator::GeneralizedAlpha;
   double rhoInf = 0.9;    // spectral radius at infinite frequency (generalized_alpha), 1 = no dissipation
   double hhtAlpha = 0.05; // HHT: alpha in [0, 1/3]; alpha_f = 1 - alpha, gamma = 1/2 + alpha, beta = (1 + alpha)^2 / 4
-  double dt = 0.0;        // fixed step [s] (required)
+  int bdfOrder = 2;       // BDF: 1..5
+  bool adaptive = false;  // BDF: step size from the local error estimate (rtol, atol); dt is the first step
+  double rtol = 1e-4, atol = 1e-6;  // BDF adaptive: weighted error norm of (u [m], v [m/s])
+  double dt = 0.0;        // fixed step [s] (required; adaptive: the first step)
   double tEnd = 0.0;      // final time [s] (required)
   int outputEvery = 1;    // write a frame every k steps (and the last step)
   SourceMark mark;
 };
+
+// Whether the integrator works on the first-order form (no joints).
+inline bool isFirstOrder(Integrator i) { return i == Integrator::Bdf || i == Integrator::Rk4 || i == Integrator::Abm4; }
+inline bool isExplicit(Integrator i) { return i == Integrator::Rk4 || i == Integrator::Abm4; }
 
 struct DiscretizationDesc {
   bool slopeScaling = false;  // slope coordinates times the element length; off: measured more accurate (docs/validation.md)

@@ -21,6 +21,10 @@
 // is consistent: velocities projected onto G v = 0, accelerations and multipliers from the
 // saddle-point system. The monitor reports max |g| and max |G v|.
 //
+// The first-order integrators (BDF 1-5 on TSBDF, fixed or adaptive step; explicit RK4 on TSRK;
+// explicit Adams-Bashforth-Moulton 4, AdamsBashforthMoulton.hpp) work on y = (u, v)
+// (StateSpace.hpp); the same monitors and the same blow-up guard apply. Without joints only.
+//
 // Supports are eliminated: their residual rows are zero and their Jacobian rows unit, and the TS
 // sets their values at the end of each step (hub supports turn, model/HubMotion.hpp; the others
 // stay at zero). The mass matrix keeps the columns of supported DOFs, so a turning hub's
@@ -35,11 +39,13 @@
 #include <petscts.h>
 
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "strand/assembly/Assembler.hpp"
 #include "strand/model/SceneDescription.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
+#include "strand/solvers/StateSpace.hpp"
 #include "strand/solvers/StaticSolver.hpp"
 
 namespace strand::solvers {
@@ -48,6 +54,8 @@ struct DynamicsStep {
   int step = 0;      // 0: initial state
   double time = 0.0;
   int newtonIterations = 0;
+  int rejectedSteps = 0;  // since the start (adaptive steps: error test or Newton failure)
+  double timeStep = 0.0;  // of the step that ended here
   double kinetic = 0.0, strain = 0.0, potential = 0.0, dissipated = 0.0, supportWork = 0.0;
   double constraintPosition = 0.0, constraintVelocity = 0.0;  // max |g(q)|, max |G v| over the joints
   double energy() const { return kinetic + strain + potential + dissipated - supportWork; }
@@ -74,7 +82,7 @@ public:
   // The force the supports exert on the body, f_s = M a + f_int - f_ext on supported rows (zero
   // elsewhere), at the current state of the integration (inside a step callback, or after run()).
   PetscErrorCode supportForce(Vec F);
-  const char* schemeName() const;
+  const char* schemeName() const { return _schemeName.c_str(); }
 
 private:
   static PetscErrorCode formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx);
@@ -87,7 +95,11 @@ private:
   PetscErrorCode initialAcceleration(Vec X, Vec V, Vec A);
   PetscErrorCode createMassSolver(Vec X, KSP* ksp);
   PetscErrorCode currentAcceleration(Vec* A);
-  PetscErrorCode powers(Vec X, Vec V, PetscReal* damping, PetscReal* support);
+  PetscErrorCode powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support);
+  PetscErrorCode supportForceAt(PetscReal t, Vec X, Vec V, Vec F);  // first-order form
+  PetscErrorCode monitorState(PetscInt step, PetscReal t, Vec X, Vec V);
+  PetscErrorCode highestFrequency(Vec X, PetscReal* omega);
+  std::string failureHint(const DynamicsStep& at) const;
 
   assembly::Assembler& _asm;
   model::DynamicsDesc _desc;
@@ -100,6 +112,11 @@ private:
   Vec _a0 = nullptr;         // initial acceleration (kept for TS types without an acceleration state)
   Vec _multipliers = nullptr, _notMultiplier = nullptr;  // 1 / 0 on multiplier DOFs, and 1 - that
   bool _damped = false, _moving = false, _constrained = false;
+  bool _firstOrder = false, _explicit = false;  // StateSpace form; RK4 / ABM4
+  std::string _schemeName;
+  KSP _massSolver = nullptr;              // first-order form: the masked mass, factored once
+  std::unique_ptr<StateSpace> _space;
+  Vec _Y = nullptr, _acc = nullptr;       // first-order state (u, v); scratch acceleration
   AlphaParams _params{0.0, 0.0, 0.5, 0.25};
   const StepCallback* _onStep = nullptr;
   DynamicsStep _last;
