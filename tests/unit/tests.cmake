@@ -6,3 +6,4 @@ strand_test(NAME unit_scene_reader SOURCES unit/test_scene_reader.cpp LABELS uni
 target_compile_definitions(unit_scene_reader PRIVATE STRAND_DOCS_DIR="${PROJECT_SOURCE_DIR}/docs")
 strand_test(NAME unit_time_function SOURCES unit/test_time_function.cpp LABELS unit)
 strand_test(NAME unit_constraint SOURCES unit/test_constraint.cpp LABELS unit)
+strand_test(NAME unit_state_space SOURCES unit/test_state_space.cpp LABELS unit NPROCS 1 2)

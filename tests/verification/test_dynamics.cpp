@@ -21,21 +21,13 @@
 
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/ModalSolver.hpp"
+#include "support/Pendulum.hpp"
 #include "support/Scenes.hpp"
 
 using namespace strand;
 using namespace strand::testing;
 
 namespace {
-
-model::DynamicsDesc scheme(model::Integrator integrator, double rhoInf, double dt, double tEnd) {
-  model::DynamicsDesc d;
-  d.integrator = integrator;
-  d.rhoInf = rhoInf;
-  d.dt = dt;
-  d.tEnd = tEnd;
-  return d;
-}
 
 // x(t_end) of the scheme's single-DOF recurrence for x'' + omega^2 x = 0, x0 = 1, v0 = 0, in the
 // form of GeneralizedAlpha.hpp (Arnold & Bruls 2007, Eqs. 9-11, with a0 = A0 = -omega^2); Newton
@@ -113,51 +105,6 @@ double quarterPeriodError(const model::DynamicsDesc& base, int stepsPerPeriod, d
   VecDestroy(&X);
   VecDestroy(&V);
   return xn / a0;
-}
-
-struct PendulumRun {
-  double e0 = 0.0, maxDrift = 0.0, eEnd = 0.0, scale = 0.0;
-  double tipX = 0.0, tipY = 0.0;
-};
-
-// 1 m cable, 8 elements, pinned at the origin, released horizontally; gravity -9.81 y.
-PendulumRun pendulum(const model::DynamicsDesc& d, double damping = 0.0) {
-  Section s;
-  s.E = 1e8;  // EA = 1e4 N, EI = 1 N m^2: a flexible rope-like cable (axial period 35 ms)
-  auto sc = cantilever(2, 8, 1.0, s);
-  sc.supports[0].type = model::SupportType::Pinned;
-  sc.loads.gravity = {0, -9.81, 0};
-  sc.bodies[0].dampAxial = sc.bodies[0].dampBending = damping;
-  solvers::Problem p(PETSC_COMM_WORLD, sc);
-  MPI_Comm comm = PETSC_COMM_WORLD;
-  Vec X, V;
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &V));
-  PetscCallAbort(comm, p.assembler().initialState(X));
-  PetscCallAbort(comm, VecSet(V, 0.0));
-  PendulumRun out;
-  const double mass = s.rho * s.A * 1.0;
-  out.scale = mass * 9.81 * 0.5;
-  solvers::Dynamics dyn(p.assembler(), d);
-  std::string failure;
-  solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec, Vec) -> PetscErrorCode {
-    if (st.step == 0) out.e0 = st.energy();
-    out.maxDrift = std::max(out.maxDrift, std::fabs(st.energy() - out.e0));
-    out.eEnd = st.energy();
-    return 0;
-  };
-  PetscCallAbort(comm, dyn.run(X, V, cb, &failure));
-  EXPECT_EQ(failure, "");
-  std::vector<double> q;
-  PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
-  q.resize(p.model().numDofs());
-  MPI_Bcast(q.data(), static_cast<int>(q.size()), MPI_DOUBLE, 0, comm);
-  const model::Vec3 tip = nodePosition(p, q, 0, -1);
-  out.tipX = tip[0];
-  out.tipY = tip[1];
-  VecDestroy(&X);
-  VecDestroy(&V);
-  return out;
 }
 
 }  // namespace

@@ -1,0 +1,83 @@
+// The flexible pendulum of the integrator tests (issue 3): a 1 m cable, 8 elements, pinned at the
+// origin, released horizontally at rest under gravity -9.81 y; EA = 1e4 N, EI = 1 N m^2 (a
+// rope-like cable, axial period 35 ms, highest frequency of the discrete model 8.6e3 rad/s).
+#pragma once
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "strand/solvers/Dynamics.hpp"
+#include "support/Scenes.hpp"
+
+namespace strand::testing {
+
+inline model::DynamicsDesc scheme(model::Integrator integrator, double rhoInf, double dt, double tEnd) {
+  model::DynamicsDesc d;
+  d.integrator = integrator;
+  d.rhoInf = rhoInf;
+  d.dt = dt;
+  d.tEnd = tEnd;
+  return d;
+}
+
+inline model::SceneDescription flexiblePendulum(double damping = 0.0, double E = 1e8, int elements = 8) {
+  Section s;
+  s.E = E;
+  auto sc = cantilever(2, elements, 1.0, s);
+  sc.supports[0].type = model::SupportType::Pinned;
+  sc.loads.gravity = {0, -9.81, 0};
+  sc.bodies[0].dampAxial = sc.bodies[0].dampBending = damping;
+  return sc;
+}
+
+struct PendulumRun {
+  double e0 = 0.0, maxDrift = 0.0, eEnd = 0.0, scale = 0.0;  // energy balance; m g L / 2
+  double tipX = 0.0, tipY = 0.0;
+  int steps = 0, rejected = 0;
+  std::string failure;
+};
+
+// Runs the pendulum scene sc with scheme d; a failure is returned, not asserted (expectFailure).
+inline PendulumRun runPendulum(const model::SceneDescription& sc, const model::DynamicsDesc& d, bool expectFailure) {
+  solvers::Problem p(PETSC_COMM_WORLD, sc);
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  Vec X, V;
+  PetscCallAbort(comm, p.dofs().createVector(&X));
+  PetscCallAbort(comm, VecDuplicate(X, &V));
+  PetscCallAbort(comm, p.assembler().initialState(X));
+  PetscCallAbort(comm, VecSet(V, 0.0));
+  PendulumRun out;
+  out.scale = sc.bodies[0].rho * sc.bodies[0].A * 1.0 * 9.81 * 0.5;
+  solvers::Dynamics dyn(p.assembler(), d);
+  solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec, Vec) -> PetscErrorCode {
+    if (st.step == 0) out.e0 = st.energy();
+    out.maxDrift = std::max(out.maxDrift, std::fabs(st.energy() - out.e0));
+    out.eEnd = st.energy();
+    out.steps = st.step;
+    out.rejected = st.rejectedSteps;
+    return 0;
+  };
+  PetscCallAbort(comm, dyn.run(X, V, cb, &out.failure));
+  if (!expectFailure) {
+    EXPECT_EQ(out.failure, "");
+  }
+  std::vector<double> q;
+  PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
+  q.resize(p.model().numDofs());
+  MPI_Bcast(q.data(), static_cast<int>(q.size()), MPI_DOUBLE, 0, comm);
+  const model::Vec3 tip = nodePosition(p, q, 0, -1);
+  out.tipX = tip[0];
+  out.tipY = tip[1];
+  VecDestroy(&X);
+  VecDestroy(&V);
+  return out;
+}
+
+inline PendulumRun pendulum(const model::DynamicsDesc& d, double damping = 0.0, bool expectFailure = false) {
+  return runPendulum(flexiblePendulum(damping), d, expectFailure);
+}
+
+}  // namespace strand::testing

@@ -1,0 +1,182 @@
+// The first-order form y = (u, v) (solvers/StateSpace.hpp) on a damped beam clamped to a turning
+// hub (seed 001's spin-up at t = 3 s, so the prescribed motion has velocity and acceleration):
+//  1. Taylor test of the Newton operator: for a direction d that leaves the supported entries alone
+//     (the operator drops the supported columns of free rows; StateSpace.hpp),
+//     |F(y + e d, y' + sigma e d) - F(y, y') - e J d| falls as e^2 (ratio 4 per halving).
+//  2. The PCShell is the exact inverse of the MatShell: |P^{-1} J x - x| / |x| ~ round-off.
+//  3. The explicit form agrees with the implicit one: F(t, y, f(t, y)) = 0 when y holds the
+//     prescribed motion on supported entries.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "strand/solvers/StateSpace.hpp"
+#include "support/Scenes.hpp"
+
+using namespace strand;
+using namespace strand::testing;
+
+namespace {
+
+struct Fixture {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  model::SceneDescription scene;
+  std::unique_ptr<solvers::Problem> problem;
+  Mat M = nullptr, Mmasked = nullptr;
+  Vec supported = nullptr;
+  KSP mass = nullptr;
+  std::unique_ptr<solvers::StateSpace> space;
+  TS ts = nullptr, tsExplicit = nullptr;  // an implicit TS (IFunction) and an explicit one (RHSFunction)
+
+  Fixture() {
+    scene = seed001Beam(7e10, 4, 4.0, 15.0);
+    scene.bodies[0].dampAxial = scene.bodies[0].dampBending = 2e-3;
+    problem = std::make_unique<solvers::Problem>(comm, scene);
+    assembly::Assembler& a = problem->assembler();
+    PetscCallAbort(comm, problem->dofs().createMatrix(&M, nullptr));
+    PetscCallAbort(comm, problem->dofs().createMatrix(&Mmasked, nullptr));
+    PetscCallAbort(comm, a.massMatrix(M, false));
+    PetscCallAbort(comm, a.massMatrix(Mmasked, true));
+    PetscCallAbort(comm, MatCreateVecs(M, nullptr, &supported));
+    IS free;
+    PetscCallAbort(comm, a.freeDofs(&free));
+    PetscCallAbort(comm, VecSet(supported, 1.0));
+    PetscCallAbort(comm, VecISSet(supported, free, 0.0));
+    PetscCallAbort(comm, ISDestroy(&free));
+    PetscCallAbort(comm, MatDiagonalSet(Mmasked, supported, ADD_VALUES));
+    PetscCallAbort(comm, KSPCreate(comm, &mass));
+    PetscCallAbort(comm, KSPSetOperators(mass, Mmasked, Mmasked));
+    PetscCallAbort(comm, solvers::setDirectSolverDefaults(mass, comm, false));
+    space = std::make_unique<solvers::StateSpace>(a, M, supported, mass, true);
+    PetscCallAbort(comm, TSCreate(comm, &ts));
+    PetscCallAbort(comm, TSSetType(ts, TSBDF));
+    PetscCallAbort(comm, space->setImplicit(ts));
+    PetscCallAbort(comm, TSCreate(comm, &tsExplicit));
+    PetscCallAbort(comm, TSSetType(tsExplicit, TSRK));
+    PetscCallAbort(comm, space->setExplicit(tsExplicit));
+    Vec Y;
+    PetscCallAbort(comm, space->createState(&Y));
+    PetscCallAbort(comm, TSSetSolution(ts, Y));
+    PetscCallAbort(comm, TSSetSolution(tsExplicit, Y));
+    PetscCallAbort(comm, VecDestroy(&Y));
+  }
+  ~Fixture() {
+    TSDestroy(&ts);
+    TSDestroy(&tsExplicit);
+    space.reset();
+    KSPDestroy(&mass);
+    MatDestroy(&M);
+    MatDestroy(&Mmasked);
+    VecDestroy(&supported);
+  }
+  // a state with displacements ~1e-2 m and velocities ~1 m/s, prescribed entries at time t
+  Vec state(double t, unsigned seed) {
+    Vec Y;
+    PetscCallAbort(comm, space->createState(&Y));
+    PetscRandom r;
+    PetscCallAbort(comm, PetscRandomCreate(comm, &r));
+    PetscCallAbort(comm, PetscRandomSetSeed(r, seed));
+    PetscCallAbort(comm, PetscRandomSeed(r));
+    PetscCallAbort(comm, VecSetRandom(Y, r));
+    PetscCallAbort(comm, PetscRandomDestroy(&r));
+    PetscCallAbort(comm, VecShift(Y, -0.5));
+    PetscScalar* y;
+    PetscInt n;
+    PetscCallAbort(comm, VecGetLocalSize(Y, &n));
+    PetscCallAbort(comm, VecGetArray(Y, &y));
+    for (PetscInt i = 0; i < n / 2; ++i) y[i] *= 2e-2;
+    PetscCallAbort(comm, VecRestoreArray(Y, &y));
+    PetscCallAbort(comm, space->prescribe(t, Y));
+    return Y;
+  }
+  // zero on the supported entries of both halves
+  void maskSupported(Vec D) {
+    Vec Xc, Vc;
+    PetscCallAbort(comm, VecDuplicate(supported, &Xc));
+    PetscCallAbort(comm, VecDuplicate(supported, &Vc));
+    PetscCallAbort(comm, space->unpack(D, Xc, Vc));
+    PetscCallAbort(comm, problem->assembler().zeroSupportedRows(Xc));
+    PetscCallAbort(comm, problem->assembler().zeroSupportedRows(Vc));
+    PetscCallAbort(comm, space->pack(Xc, Vc, D));
+    VecDestroy(&Xc);
+    VecDestroy(&Vc);
+  }
+};
+
+}  // namespace
+
+TEST(StateSpace, NewtonOperatorPassesTheTaylorTestAndItsPreconditionerIsItsInverse) {
+  Fixture f;
+  MPI_Comm comm = f.comm;
+  const double t = 3.0, sigma = 1500.0;  // sigma ~ 3 / (2 h), BDF2 at h = 1 ms
+  Vec Y = f.state(t, 7), Yd = f.state(t, 11), D = f.state(t, 13), F0, F1, JD, W;
+  f.maskSupported(D);
+  PetscCallAbort(comm, VecDuplicate(Y, &F0));
+  PetscCallAbort(comm, VecDuplicate(Y, &F1));
+  PetscCallAbort(comm, VecDuplicate(Y, &JD));
+  PetscCallAbort(comm, VecDuplicate(Y, &W));
+  Mat J;
+  PetscCallAbort(comm, TSGetIJacobian(f.ts, &J, nullptr, nullptr, nullptr));
+  PetscCallAbort(comm, TSComputeIFunction(f.ts, t, Y, Yd, F0, PETSC_FALSE));
+  PetscCallAbort(comm, TSComputeIJacobian(f.ts, t, Y, Yd, sigma, J, J, PETSC_FALSE));
+  PetscCallAbort(comm, MatMult(J, D, JD));
+  double prev = 0.0;
+  for (int k = 0; k < 5; ++k) {
+    const double e = 1e-3 / (1 << k);
+    Vec Ye, Yde;
+    PetscCallAbort(comm, VecDuplicate(Y, &Ye));
+    PetscCallAbort(comm, VecDuplicate(Y, &Yde));
+    PetscCallAbort(comm, VecWAXPY(Ye, e, D, Y));
+    PetscCallAbort(comm, VecWAXPY(Yde, sigma * e, D, Yd));
+    PetscCallAbort(comm, TSComputeIFunction(f.ts, t, Ye, Yde, F1, PETSC_FALSE));
+    PetscCallAbort(comm, VecAXPY(F1, -1.0, F0));
+    PetscCallAbort(comm, VecAXPY(F1, -e, JD));
+    PetscReal r;
+    PetscCallAbort(comm, VecNorm(F1, NORM_2, &r));
+    if (k > 0) {
+      std::printf("e = %.3e  remainder %.4e  ratio %.3f\n", e, r, prev / r);
+      EXPECT_NEAR(prev / r, 4.0, 0.2);
+    }
+    prev = r;
+    VecDestroy(&Ye);
+    VecDestroy(&Yde);
+  }
+  // P^{-1} J x = x for any x (supported entries included)
+  SNES snes;
+  KSP ksp;
+  PC pc;
+  PetscCallAbort(comm, TSGetSNES(f.ts, &snes));
+  PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
+  PetscCallAbort(comm, KSPGetPC(ksp, &pc));
+  PetscCallAbort(comm, PCSetOperators(pc, J, J));  // as the SNES would before its first solve
+  Vec x = f.state(t, 17);
+  PetscCallAbort(comm, MatMult(J, x, W));
+  PetscCallAbort(comm, PCApply(pc, W, F1));
+  PetscCallAbort(comm, VecAXPY(F1, -1.0, x));
+  PetscReal err, nx;
+  PetscCallAbort(comm, VecNorm(F1, NORM_2, &err));
+  PetscCallAbort(comm, VecNorm(x, NORM_2, &nx));
+  std::printf("|P^-1 J x - x| / |x| = %.3e\n", err / nx);
+  EXPECT_LT(err / nx, 1e-10);
+  for (Vec* v : {&Y, &Yd, &D, &F0, &F1, &JD, &W, &x}) VecDestroy(v);
+}
+
+TEST(StateSpace, ExplicitRateSolvesTheImplicitResidual) {
+  Fixture f;
+  MPI_Comm comm = f.comm;
+  const double t = 3.0;
+  Vec Y = f.state(t, 5), G, F;
+  PetscCallAbort(comm, VecDuplicate(Y, &G));
+  PetscCallAbort(comm, VecDuplicate(Y, &F));
+  PetscCallAbort(comm, TSComputeRHSFunction(f.tsExplicit, t, Y, G));
+  PetscCallAbort(comm, TSComputeIFunction(f.ts, t, Y, G, F, PETSC_FALSE));
+  PetscReal r, g;
+  PetscCallAbort(comm, VecNorm(F, NORM_INFINITY, &r));
+  PetscCallAbort(comm, VecNorm(G, NORM_INFINITY, &g));
+  std::printf("|F(t, y, f(t, y))| = %.3e  (|f| = %.3e)\n", r, g);
+  EXPECT_LT(r, 1e-9 * g);
+  VecDestroy(&Y);
+  VecDestroy(&G);
+  VecDestroy(&F);
+}
