@@ -129,7 +129,8 @@ private:
   }
 
   // Time integration from the reference shape at rest; a frame every output_every steps and at the
-  // end, the energy monitor and Newton iterations every step (/series).
+  // end, the energy monitor, Newton iterations, the step size and the rejected steps (since the start)
+  // every step (/series).
   int dynamicSolve(Vec X, std::string* failure) {
     const model::DynamicsDesc& d = _scene.dynamics;
     Vec V;
@@ -170,6 +171,8 @@ private:
       }
       PetscCallCXX(_writer->writeScalarSeries("energy_balance", s.energy()));
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
+      PetscCallCXX(_writer->writeScalarSeries("time_step", s.timeStep));
+      PetscCallCXX(_writer->writeScalarSeries("rejected_steps", s.rejectedSteps));
       _progress.update("t " + fmt("%.5g", s.time) + " s  step " + std::to_string(s.step) + "  Newton " +
                        std::to_string(s.newtonIterations) + "  E " + fmt("%.6e J", s.energy()),
                        s.time / d.tEnd);

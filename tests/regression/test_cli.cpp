@@ -251,3 +251,43 @@ TEST(Cli, CompoundPendulumSceneHoldsItsPinAndSwingsForHalfAPeriod) {
       << b.output;
   fs::remove_all(dir);
 }
+
+// meshes/flexible-pendulum.yaml with the first-order integrators (their verification:
+// tests/verification/test_integrators.cpp): adaptive BDF2 runs to the end and writes its step sizes
+// and rejected steps; RK4 above its stability limit (2 sqrt(2) / omega_max = 3.28e-4 s for this
+// model) stops with exit code 3, an explanation naming the limit, and a readable output file.
+TEST(Cli, FirstOrderIntegratorsRunAndAnUnstableExplicitStepStopsCleanly) {
+  const fs::path dir = scratchDir("first-order");
+  std::string text;
+  {
+    std::ifstream in(sourceDir() + "/meshes/flexible-pendulum.yaml");
+    text.assign((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }
+  auto withDynamics = [&](const std::string& dynamics) {
+    std::string t = text;
+    t.replace(t.find("dynamics:"), std::string::npos, dynamics);
+    return t;
+  };
+  const fs::path bdf = dir / "bdf.yaml", rk4 = dir / "rk4.yaml";
+  std::ofstream(bdf) << withDynamics(
+      "dynamics: {integrator: bdf, bdf_order: 2, adaptive: true, rtol: 1e-4, atol: 1e-6, dt: 1e-4, t_end: 0.2}\n");
+  std::ofstream(rk4) << withDynamics("dynamics: {integrator: rk4, dt: 4e-4, t_end: 0.2, output_every: 10}\n");
+  auto b = runCommand(strandBinary() + " run " + bdf.string() + " -o " + (dir / "bdf.h5").string());
+  ASSERT_EQ(b.exitCode, 0) << b.output;
+  if (haveH5py()) {
+    auto h = runCommand("/usr/bin/python3 -c \"import h5py; f = h5py.File('" + (dir / "bdf.h5").string() +
+                        "'); s = f['series']; print(f.attrs['status'], f.attrs['integrator'], '%.4f' % s['time'][-1], "
+                        "int(s['rejected_steps'][-1]) >= 0, s['time_step'][1:].min() > 0)\"");
+    EXPECT_NE(h.output.find("ok BDF2 (adaptive step) 0.2000 True True"), std::string::npos) << h.output;
+  }
+  auto r = runCommand(strandBinary() + " run " + rk4.string() + " -o " + (dir / "rk4.h5").string());
+  EXPECT_EQ(r.exitCode, 3) << r.output;
+  EXPECT_NE(r.output.find("RK4 (explicit) stopped at t = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("RK4 is stable only while dt omega_max <= 2 sqrt(2)"), std::string::npos) << r.output;
+  if (haveH5py()) {
+    auto h = runCommand("/usr/bin/python3 -c \"import h5py; f = h5py.File('" + (dir / "rk4.h5").string() +
+                        "'); print(f.attrs['status'], f['frames'].attrs['count'] >= 1)\"");
+    EXPECT_NE(h.output.find("diverged True"), std::string::npos) << h.output;
+  }
+  fs::remove_all(dir);
+}
