@@ -14,6 +14,7 @@
 #include "Commands.hpp"
 #include "Progress.hpp"
 #include "strand/core/Error.hpp"
+#include "strand/io/Checkpoint.hpp"
 #include "strand/io/Frames.hpp"
 #include "strand/io/OutputWriter.hpp"
 #include "strand/io/SceneReader.hpp"
@@ -34,11 +35,51 @@ std::string outputPath(const model::SceneDescription& scene) {
   PetscBool set = PETSC_FALSE;
   PetscOptionsGetString(nullptr, nullptr, "-o", buf, sizeof(buf), &set);
   if (set) return buf;
-  if (!scene.output.file.empty()) return scene.output.file;
-  return std::filesystem::path(scene.file).stem().string() + ".h5";
+  const std::string path =
+      scene.output.file.empty() ? std::filesystem::path(scene.file).stem().string() + ".h5" : scene.output.file;
+  PetscBool restart = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, "-restart", &restart);
+  if (!restart) return path;
+  // a restarted run must not overwrite the output of the run it continues
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + "_restart" + p.extension().string())).string();
 }
 
 namespace {
+
+std::string stringOption(const char* name) {
+  char buf[PETSC_MAX_PATH_LEN] = "";
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsGetString(nullptr, nullptr, name, buf, sizeof(buf), &set);
+  return set ? buf : "";
+}
+
+// Checkpoint options of `strand run` for dynamic scenes (docs/user-guide.md, "Batch jobs").
+struct CheckpointOptions {
+  std::string path;     // -checkpoint FILE, default <output stem>.ckpt.h5
+  int every = 0;        // -checkpoint_every N steps (0: only at the wall-time limit)
+  double wallTime = 0;  // -wall_time SECONDS (0: none)
+  std::string restart;  // -restart FILE
+};
+
+CheckpointOptions checkpointOptions(const std::string& output) {
+  CheckpointOptions o;
+  o.path = stringOption("-checkpoint");
+  if (o.path.empty()) {
+    const std::filesystem::path p(output);
+    o.path = (p.parent_path() / (p.stem().string() + ".ckpt.h5")).string();
+  }
+  PetscInt every = 0;
+  PetscReal wall = 0.0;
+  PetscOptionsGetInt(nullptr, nullptr, "-checkpoint_every", &every, nullptr);
+  PetscOptionsGetReal(nullptr, nullptr, "-wall_time", &wall, nullptr);
+  if (every < 0) throw InputError("-checkpoint_every " + std::to_string(every) + ": must be >= 0 (steps)");
+  if (wall < 0) throw InputError("-wall_time: must be >= 0 (seconds)");
+  o.every = static_cast<int>(every);
+  o.wallTime = wall;
+  o.restart = stringOption("-restart");
+  return o;
+}
 
 bool hasLoads(const model::SceneDescription& s) {
   auto nz = [](const model::Vec3& v) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; };
@@ -58,6 +99,10 @@ public:
     const bool modal = _mode == RunMode::ForceModes || _scene.analysis == model::Analysis::Modes;
     const std::string out = outputPath(_scene);
     const bool dynamic = !modal && _scene.analysis == model::Analysis::Dynamic;
+    if (dynamic) {
+      _checkpoint = checkpointOptions(out);
+      if (!_checkpoint.restart.empty()) readRestart();  // bad input before any file is written
+    }
     io::RunInfo info{_scene.file, modal ? "modes" : dynamic ? "dynamic" : "static", kVersion, m.dim()};
     _writer = std::make_unique<io::OutputWriter>(_comm, out, info, io::bodyLayouts(m, _scene.output.samplesPerElement));
     say("strand " + std::string(kVersion) + ": " + _scene.file + ": " + std::to_string(m.elements().size()) +
@@ -78,10 +123,13 @@ public:
     if (code == kExitSuccess && modal) modes(X);
     PetscTime(&t1);
     _progress.finish();
-    _writer->setAttribute("status", code == kExitSuccess ? "ok" : "diverged");
+    _writer->setAttribute("status", code == kExitSuccess ? "ok" : code == kExitWallTime ? "stopped" : "diverged");
     _writer->setAttribute("wall_time_s", t1 - t0);
     _writer->close();
-    if (code != kExitSuccess) {
+    if (code == kExitWallTime) {
+      say(failure);
+      say("output so far: " + out + " (readable, status = stopped)");
+    } else if (code != kExitSuccess) {
       if (_rank == 0) std::fprintf(stderr, "strand: error: %s\n", failure.c_str());
       say("output so far: " + out + " (readable, status = diverged)");
     } else {
@@ -138,12 +186,21 @@ private:
     PetscCallAbort(_comm, _problem.assembler().initialVelocity(V));
     solvers::Dynamics dyn(_problem.assembler(), d);
     PetscCallAbort(_comm, dyn.setFromOptions());
+    if (!_checkpoint.restart.empty()) resume(dyn, X, V);
     _writer->setAttribute("integrator", dyn.schemeName());
+    PetscLogDouble start;
+    PetscTime(&start);
+    if (_checkpoint.wallTime > 0.0)
+      dyn.setStopCheck([&] {
+        PetscLogDouble now;
+        PetscTime(&now);
+        return now - start > _checkpoint.wallTime;
+      });
     _writer->setAttribute("dt", d.dt);
     const bool moving = !_problem.model().hubMotions().empty();
     const bool joints = _problem.model().hasConstraints();
     const auto& rigid = _problem.model().rigidBodies();
-    auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec) -> PetscErrorCode {
+    auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec Vs) -> PetscErrorCode {
       PetscFunctionBeginUser;
       _newtonTotal += s.newtonIterations;
       const bool last = s.time >= d.tEnd * (1.0 - 1e-12);
@@ -173,14 +230,123 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
       PetscCallCXX(_writer->writeScalarSeries("time_step", s.timeStep));
       PetscCallCXX(_writer->writeScalarSeries("rejected_steps", s.rejectedSteps));
+      if (_checkpoint.every > 0 && s.step > _firstStep && s.step % _checkpoint.every == 0 && !last)
+        PetscCallCXX(writeCheckpoint(dyn, Xs, Vs));
       _progress.update("t " + fmt("%.5g", s.time) + " s  step " + std::to_string(s.step) + "  Newton " +
                        std::to_string(s.newtonIterations) + "  E " + fmt("%.6e J", s.energy()),
                        s.time / d.tEnd);
       PetscFunctionReturn(0);
     };
     PetscCallAbort(_comm, dyn.run(X, V, onStep, failure));
+    int code = failure->empty() ? kExitSuccess : kExitDiverged;
+    if (code == kExitSuccess && dyn.stoppedByRequest()) {
+      writeCheckpoint(dyn, X, V);
+      solvers::ResumeState at;
+      PetscCallAbort(_comm, dyn.saveState(&at));
+      *failure = "stopped at the wall-time limit (-wall_time " + fmt("%g", _checkpoint.wallTime) + " s) at t = " +
+                 fmt("%.6g", at.time) + " s, step " + std::to_string(at.step) + "; checkpoint: " + _checkpoint.path +
+                 ". Continue with: strand run " + _scene.file + " -restart " + _checkpoint.path +
+                 (dyn.exactRestart() ? "" : " (this integrator restarts its multistep start-up: the continued "
+                                            "trajectory differs at the level of its truncation error)");
+      code = kExitWallTime;
+    }
     VecDestroy(&V);
-    return failure->empty() ? kExitSuccess : kExitDiverged;
+    return code;
+  }
+
+  // The scene's integrator state in model numbering (io/Checkpoint.hpp).
+  void writeCheckpoint(solvers::Dynamics& dyn, Vec X, Vec V) {
+    solvers::ResumeState s;
+    PetscCallAbort(_comm, dyn.saveState(&s));
+    io::CheckpointData c;
+    c.scene = _scene.file;
+    c.integrator = dyn.schemeName();
+    c.scalars = {{"time", s.time},
+                 {"step", s.step},
+                 {"dt", _scene.dynamics.dt},
+                 {"coordinates", _problem.model().numDofs()},
+                 {"dissipated_work", s.last.dissipated},
+                 {"support_work", s.last.supportWork},
+                 {"energy_initial", s.e0},
+                 {"energy_scale", s.energyScale},
+                 {"damping_power", s.lastDampingPower},
+                 {"support_power", s.lastSupportPower},
+                 {"exact_restart", dyn.exactRestart() ? 1.0 : 0.0}};
+    std::vector<std::pair<std::string, Vec>> vecs{{"X", X}, {"V", V}};
+    if (s.A) vecs.push_back({"A", s.A});
+    if (s.a) vecs.push_back({"a", s.a});
+    for (const auto& [name, v] : vecs) PetscCallAbort(_comm, _problem.assembler().toModelOrder(v, c.vectors[name]));
+    io::writeCheckpoint(_comm, _checkpoint.path, c);
+  }
+
+  // -restart FILE: read and check against the scene (InputError names the file and what differs).
+  void readRestart() {
+    const std::string& path = _checkpoint.restart;
+    _restart = io::readCheckpoint(_comm, path);
+    const auto& sc = _restart.scalars;
+    auto need = [&](const char* key) {
+      if (!sc.count(key)) throw InputError(path + ": -restart: the checkpoint has no '" + key + "'");
+      return sc.at(key);
+    };
+    const model::DynamicsDesc& d = _scene.dynamics;
+    if (need("coordinates") != _problem.model().numDofs())
+      throw InputError(path + ": -restart: the checkpoint has " + fmt("%.0f", need("coordinates")) +
+                       " coordinates, this scene " + std::to_string(_problem.model().numDofs()) +
+                       ": it was written for another model");
+    if (std::fabs(need("dt") - d.dt) > 1e-12 * d.dt)
+      throw InputError(path + ": -restart: the checkpoint's dt " + fmt("%g", need("dt")) +
+                       " differs from dynamics.dt " + fmt("%g", d.dt) + " of " + _scene.file);
+    if (need("time") >= d.tEnd * (1.0 - 1e-12))
+      throw InputError(path + ": -restart: the checkpoint is at t = " + fmt("%g", need("time")) +
+                       " s, not before dynamics.t_end = " + fmt("%g", d.tEnd) + " s: nothing to continue");
+    need("step");
+  }
+
+  void resume(solvers::Dynamics& dyn, Vec X, Vec V) {
+    const std::string& path = _checkpoint.restart;
+    if (_restart.integrator != dyn.schemeName())
+      throw InputError(path + ": -restart: the checkpoint was written by " + _restart.integrator +
+                       ", the scene integrates with " + dyn.schemeName());
+    int missing = 0;
+    if (_rank == 0)
+      for (const char* n : {"X", "V"}) missing += _restart.vectors.count(n) ? 0 : 1;
+    MPI_Bcast(&missing, 1, MPI_INT, 0, _comm);
+    if (missing) throw InputError(path + ": -restart: the checkpoint lacks /X or /V");
+    const auto& sc = _restart.scalars;
+    solvers::ResumeState s;
+    s.time = sc.at("time");
+    s.step = static_cast<int>(std::lround(sc.at("step")));
+    s.last.time = s.time;
+    s.last.step = s.step;
+    s.last.dissipated = sc.count("dissipated_work") ? sc.at("dissipated_work") : 0.0;
+    s.last.supportWork = sc.count("support_work") ? sc.at("support_work") : 0.0;
+    s.e0 = sc.count("energy_initial") ? sc.at("energy_initial") : 0.0;
+    s.energyScale = sc.count("energy_scale") ? sc.at("energy_scale") : 0.0;
+    s.lastDampingPower = sc.count("damping_power") ? sc.at("damping_power") : 0.0;
+    s.lastSupportPower = sc.count("support_power") ? sc.at("support_power") : 0.0;
+    auto load = [&](const char* name, Vec v) {
+      static const std::vector<double> none;
+      const auto it = _restart.vectors.find(name);
+      PetscCallAbort(_comm, _problem.assembler().fromModelOrder(it == _restart.vectors.end() ? none : it->second, v));
+    };
+    load("X", X);
+    load("V", V);
+    Vec A = nullptr, a = nullptr;
+    int hasAlpha = _rank == 0 && _restart.vectors.count("A") && _restart.vectors.count("a") ? 1 : 0;
+    MPI_Bcast(&hasAlpha, 1, MPI_INT, 0, _comm);
+    if (hasAlpha) {
+      PetscCallAbort(_comm, VecDuplicate(X, &A));
+      PetscCallAbort(_comm, VecDuplicate(X, &a));
+      load("A", A);
+      load("a", a);
+      s.A = A;
+      s.a = a;
+    }
+    PetscCallAbort(_comm, dyn.resumeFrom(s));
+    VecDestroy(&A);
+    VecDestroy(&a);
+    _firstStep = s.step;
+    say("restart from " + path + " at t = " + fmt("%.6g", s.time) + " s, step " + std::to_string(s.step));
   }
 
   void modes(Vec X) {
@@ -240,6 +406,9 @@ private:
   Progress _progress;
   std::unique_ptr<io::OutputWriter> _writer;
   PetscInt _newtonTotal = 0;
+  CheckpointOptions _checkpoint;
+  io::CheckpointData _restart;
+  int _firstStep = 0;  // the step a restarted run starts from (no checkpoint is rewritten there)
 };
 
 }  // namespace

@@ -691,6 +691,13 @@ PetscErrorCode Assembler::freeDofs(IS* is) const {
 
 PetscErrorCode Assembler::gatherToRoot(Vec X, std::vector<double>& out) {
   PetscFunctionBeginUser;
+  PetscCall(toModelOrder(X, out));
+  for (size_t i = 0; i < out.size(); ++i) out[i] += _model.initialCoordinates()[i];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::toModelOrder(Vec X, std::vector<double>& out) {
+  PetscFunctionBeginUser;
   if (!_toRoot) PetscCall(VecScatterCreateToZero(X, &_toRoot, &_rootVec));
   PetscCall(VecScatterBegin(_toRoot, X, _rootVec, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(_toRoot, X, _rootVec, INSERT_VALUES, SCATTER_FORWARD));
@@ -703,10 +710,29 @@ PetscErrorCode Assembler::gatherToRoot(Vec X, std::vector<double>& out) {
     const PetscInt bs = _dofs.blockSize();
     out.resize(_model.numDofs());
     for (int b = 0; b < _model.numBlocks(); ++b)
-      for (PetscInt i = 0; i < bs; ++i)
-        out[b * bs + i] = _model.initialCoordinates()[b * bs + i] + a[_dofs.globalBlock()[b] * bs + i];
+      for (PetscInt i = 0; i < bs; ++i) out[b * bs + i] = a[_dofs.globalBlock()[b] * bs + i];
     PetscCall(VecRestoreArrayRead(_rootVec, &a));
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::fromModelOrder(const std::vector<double>& in, Vec X) {
+  PetscFunctionBeginUser;
+  if (!_toRoot) PetscCall(VecScatterCreateToZero(X, &_toRoot, &_rootVec));
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(_dofs.comm(), &rank));
+  if (rank == 0) {
+    PetscCheck(in.size() == static_cast<size_t>(_model.numDofs()), PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+               "fromModelOrder: %zu values for %d coordinates", in.size(), _model.numDofs());
+    PetscScalar* a;
+    PetscCall(VecGetArray(_rootVec, &a));
+    const PetscInt bs = _dofs.blockSize();
+    for (int b = 0; b < _model.numBlocks(); ++b)
+      for (PetscInt i = 0; i < bs; ++i) a[_dofs.globalBlock()[b] * bs + i] = in[b * bs + i];
+    PetscCall(VecRestoreArray(_rootVec, &a));
+  }
+  PetscCall(VecScatterBegin(_toRoot, _rootVec, X, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(_toRoot, _rootVec, X, INSERT_VALUES, SCATTER_REVERSE));
   PetscFunctionReturn(0);
 }
 

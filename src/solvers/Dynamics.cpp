@@ -123,6 +123,8 @@ Dynamics::~Dynamics() {
   KSPDestroy(&_massSolver);
   VecDestroy(&_Y);
   VecDestroy(&_acc);
+  VecDestroy(&_resume.A);
+  VecDestroy(&_resume.a);
   MatDestroy(&_M);
   MatDestroy(&_J);
   for (Vec* v : {&_fext, &_w1, &_w2, &_a0, &_supported, &_reaction, &_multipliers, &_notMultiplier}) VecDestroy(v);
@@ -416,6 +418,14 @@ PetscErrorCode Dynamics::postStep(TS ts) {
     PetscCall(self->_space->prescribe(t, Y));
   }
   if (self->_blowUp > 0.0) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
+  if (self->_stopCheck) {  // every rank must stop at the same step
+    int stop = self->_stopCheck() ? 1 : 0;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, PetscObjectComm(reinterpret_cast<PetscObject>(ts))));
+    if (stop && self->_blowUp == 0.0) {
+      self->_stopped = true;
+      PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -425,12 +435,22 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
              "%s: joints (Lagrange multipliers) need integrator generalized_alpha", _schemeName.c_str());
   failure->clear();
   _onStep = &onStep;
-  PetscCall(TSSetTime(_ts, 0.0));
-  PetscCall(TSSetStepNumber(_ts, 0));
+  _stopped = false;
+  const double t0 = _resuming ? _resume.time : 0.0;
+  PetscCall(TSSetTime(_ts, t0));
+  PetscCall(TSSetStepNumber(_ts, _resuming ? _resume.step : 0));
   PetscCall(TSSetTimeStep(_ts, _desc.dt));
   _reactionValid = false;
   _blowUp = _energyScale = 0.0;
-  PetscCall(_asm.prescribedMotion(0.0, X, V, nullptr));
+  if (_resuming) {  // the energy monitor continues its sums
+    _last = _resume.last;
+    _e0 = _resume.e0;
+    _energyScale = _resume.energyScale;
+    _lastDampingPower = _resume.lastDampingPower;
+    _lastSupportPower = _resume.lastSupportPower;
+  } else {
+    PetscCall(_asm.prescribedMotion(0.0, X, V, nullptr));
+  }
   Vec X0 = nullptr;  // explicit schemes: the initial state, for the stability estimate of a failure
   if (_firstOrder) {
     if (_explicit) {
@@ -446,12 +466,14 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     // the mass rows' shiftA, so that [shiftA M + K, s G^T; s G, 0] has balanced rows
     if (_constrained)
       _asm.setConstraintScale((1.0 - _params.alphaM) / ((1.0 - _params.alphaF) * _params.beta * _desc.dt * _desc.dt));
-    PetscCall(initialAcceleration(X, V, _a0));
+    if (_resuming) PetscCall(VecCopy(_resume.A, _a0));
+    else PetscCall(initialAcceleration(X, V, _a0));
     PetscCall(TS2SetSolution(_ts, X, V));
     PetscBool ours;
     PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
     if (ours) {
-      PetscCall(GeneralizedAlphaSetAcceleration(_ts, _a0));
+      if (_resuming) PetscCall(GeneralizedAlphaSetState(_ts, _resume.A, _resume.a));
+      else PetscCall(GeneralizedAlphaSetAcceleration(_ts, _a0));
       PetscCall(GeneralizedAlphaSetPrescribedMotion(_ts, prescribe, this));
       if (_constrained) PetscCall(GeneralizedAlphaSetAlgebraic(_ts, _multipliers));
     }
@@ -506,7 +528,54 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
   }
   PetscCall(VecDestroy(&X0));
   _onStep = nullptr;
+  if (_resuming) {
+    PetscCall(VecDestroy(&_resume.A));
+    PetscCall(VecDestroy(&_resume.a));
+    _resuming = false;
+  }
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode Dynamics::saveState(ResumeState* s) {
+  PetscFunctionBeginUser;
+  PetscReal t;
+  PetscInt step;
+  PetscCall(TSGetTime(_ts, &t));
+  PetscCall(TSGetStepNumber(_ts, &step));
+  s->time = t;
+  s->step = static_cast<int>(step);
+  s->last = _last;
+  s->e0 = _e0;
+  s->energyScale = _energyScale;
+  s->lastDampingPower = _lastDampingPower;
+  s->lastSupportPower = _lastSupportPower;
+  s->A = s->a = nullptr;
+  PetscBool ours = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
+  if (ours) PetscCall(GeneralizedAlphaGetState(_ts, &s->A, &s->a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Dynamics::resumeFrom(const ResumeState& s) {
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&_resume.A));
+  PetscCall(VecDestroy(&_resume.a));
+  _resume = s;
+  _resume.A = _resume.a = nullptr;
+  PetscCheck(_firstOrder || (s.A && s.a), _asm.dofs().comm(), PETSC_ERR_ARG_NULL,
+             "resuming %s needs the accelerations A and a", _schemeName.c_str());
+  if (!_firstOrder) {
+    PetscCall(VecDuplicate(s.A, &_resume.A));
+    PetscCall(VecDuplicate(s.a, &_resume.a));
+    PetscCall(VecCopy(s.A, _resume.A));
+    PetscCall(VecCopy(s.a, _resume.a));
+  }
+  _resuming = true;
+  PetscFunctionReturn(0);
+}
+
+bool Dynamics::exactRestart() const {
+  return !_firstOrder || _desc.integrator == model::Integrator::Rk4;
 }
 
 std::string Dynamics::failureHint(const DynamicsStep&) const {

@@ -255,6 +255,21 @@ PetscErrorCode GeneralizedAlphaGetAcceleration(TS ts, Vec* A) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode GeneralizedAlphaGetState(TS ts, Vec* A, Vec* a) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  *A = dataOf(ts)->A;
+  *a = dataOf(ts)->a;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaSetState(TS ts, Vec A, Vec a) {
+  PetscFunctionBeginUser;
+  PetscCall(GeneralizedAlphaSetAcceleration(ts, A));
+  PetscCall(VecCopy(a, dataOf(ts)->a));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode GeneralizedAlphaSetAlgebraic(TS ts, Vec mask) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));

@@ -291,3 +291,72 @@ TEST(Cli, FirstOrderIntegratorsRunAndAnUnstableExplicitStepStopsCleanly) {
   }
   fs::remove_all(dir);
 }
+
+// Batch jobs (issue 3): a restarted run continues the trajectory of an uninterrupted one to solver
+// tolerance, on one rank and on two (the checkpoint is in model numbering); a wall-time limit writes
+// a checkpoint and exits with code 4 and a readable output file; a checkpoint that does not fit the
+// scene is bad input (exit 2, file and reason named). Scene: meshes/flexible-pendulum.yaml,
+// generalized-alpha rho_inf = 1, 1000 steps; the checkpoint is the one written at step 800.
+TEST(Cli, RestartContinuesTheTrajectoryAndAWallTimeLimitStopsCleanly) {
+  const fs::path dir = scratchDir("restart");
+  const std::string scene = sourceDir() + "/meshes/flexible-pendulum.yaml";
+  auto lastNode = [](const std::string& out) {
+    const size_t p = out.find("last node at (");
+    return p == std::string::npos ? std::string("none") : out.substr(p, out.find(')', p) - p);
+  };
+  auto full = runCommand(strandBinary() + " run " + scene + " -o " + (dir / "full.h5").string());
+  ASSERT_EQ(full.exitCode, 0) << full.output;
+  const fs::path ckpt = dir / "part.ckpt.h5";
+  auto part = runCommand(strandBinary() + " run " + scene + " -o " + (dir / "part.h5").string() +
+                         " -checkpoint_every 400");
+  ASSERT_EQ(part.exitCode, 0) << part.output;
+  ASSERT_TRUE(fs::exists(ckpt));
+  auto one = runCommand(strandBinary() + " run " + scene + " -restart " + ckpt.string() + " -o " +
+                        (dir / "r1.h5").string());
+  ASSERT_EQ(one.exitCode, 0) << one.output;
+  EXPECT_NE(one.output.find("restart from " + ckpt.string() + " at t = 0.8 s, step 800"), std::string::npos)
+      << one.output;
+  EXPECT_EQ(lastNode(one.output), lastNode(full.output)) << one.output;
+  // mpiexec from inside this (singleton MPI) process: a clean environment, or Open MPI refuses
+  auto two = runCommand("env -i PATH=\"$PATH\" HOME=\"$HOME\" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                        "OMPI_MCA_btl_vader_single_copy_mechanism=none " + std::string(STRAND_MPIEXEC) + " -n 2 " + strandBinary() + " run " + scene + " -restart " +
+                        ckpt.string() + " -o " + (dir / "r2.h5").string());
+  ASSERT_EQ(two.exitCode, 0) << two.output;
+  EXPECT_EQ(lastNode(two.output), lastNode(full.output)) << two.output;
+  if (haveH5py()) {  // the restarted output starts at the checkpoint and ends at t_end
+    auto h = runCommand("/usr/bin/python3 -c \"import h5py; s = h5py.File('" + (dir / "r1.h5").string() +
+                        "')['series']; print('%.3f %.3f %d' % (s['time'][0], s['time'][-1], len(s['time'])))\"");
+    EXPECT_NE(h.output.find("0.800 1.000 201"), std::string::npos) << h.output;
+  }
+  // a wall-time limit of zero stops after the first step with a checkpoint and exit code 4
+  const fs::path wallCkpt = dir / "wall.ckpt.h5";
+  auto wall = runCommand(strandBinary() + " run " + scene + " -o " + (dir / "wall.h5").string() + " -wall_time 1e-9");
+  EXPECT_EQ(wall.exitCode, 4) << wall.output;
+  EXPECT_NE(wall.output.find("stopped at the wall-time limit"), std::string::npos) << wall.output;
+  EXPECT_NE(wall.output.find("-restart " + wallCkpt.string()), std::string::npos) << wall.output;
+  EXPECT_TRUE(fs::exists(wallCkpt));
+  if (haveH5py()) {
+    auto h = runCommand("/usr/bin/python3 -c \"import h5py; print(h5py.File('" + (dir / "wall.h5").string() +
+                        "').attrs['status'])\"");
+    EXPECT_NE(h.output.find("stopped"), std::string::npos) << h.output;
+  }
+  // checkpoints that do not fit are bad input; nothing is written
+  auto missing = runCommand(strandBinary() + " run " + scene + " -restart " + (dir / "nope.h5").string() + " -o " +
+                            (dir / "x.h5").string());
+  EXPECT_EQ(missing.exitCode, 2) << missing.output;
+  EXPECT_NE(missing.output.find("nope.h5: -restart: no such file"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(dir / "x.h5"));
+  const fs::path other = dir / "other.yaml";
+  {
+    std::ifstream in(scene);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("dt: 1e-3"), 8, "dt: 5e-4");
+    std::ofstream(other) << text;
+  }
+  auto dt = runCommand(strandBinary() + " run " + other.string() + " -restart " + ckpt.string() + " -o " +
+                       (dir / "y.h5").string());
+  EXPECT_EQ(dt.exitCode, 2) << dt.output;
+  EXPECT_NE(dt.output.find("-restart: the checkpoint's dt 0.001 differs from dynamics.dt 0.0005"), std::string::npos)
+      << dt.output;
+  fs::remove_all(dir);
+}

@@ -88,6 +88,10 @@ public:
   PetscErrorCode freeDofs(IS* is) const;
   // Coordinates q = q0 + X as a full-length array in model numbering on rank 0 (empty elsewhere).
   PetscErrorCode gatherToRoot(Vec X, std::vector<double>& modelOrdered);
+  // X itself in model numbering on rank 0 (empty elsewhere), and back (`in` read on rank 0 only):
+  // checkpoints that any number of ranks can read.
+  PetscErrorCode toModelOrder(Vec X, std::vector<double>& modelOrdered);
+  PetscErrorCode fromModelOrder(const std::vector<double>& modelOrdered, Vec X);
 
   struct Impl;  // dimension-specific kernels (Assembler.cpp)
 

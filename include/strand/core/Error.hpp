@@ -11,7 +11,8 @@
 
 namespace strand {
 
-enum ExitCode : int { kExitSuccess = 0, kExitInternal = 1, kExitBadInput = 2, kExitDiverged = 3 };
+// 4: a dynamic run stopped at its wall-time limit (-wall_time) after writing a checkpoint.
+enum ExitCode : int { kExitSuccess = 0, kExitInternal = 1, kExitBadInput = 2, kExitDiverged = 3, kExitWallTime = 4 };
 
 class InputError : public std::runtime_error {
 public:

@@ -61,6 +61,17 @@ struct DynamicsStep {
   double energy() const { return kinetic + strain + potential + dissipated - supportWork; }
 };
 
+// What a checkpoint holds besides X and V, to continue a run exactly (Dynamics::saveState,
+// resumeFrom): the time, the step, the energy monitor's accumulators, and generalized-alpha's
+// accelerations A and a (the multistep schemes restart their start-up instead: not exact).
+struct ResumeState {
+  double time = 0.0;
+  int step = 0;
+  DynamicsStep last;
+  double e0 = 0.0, energyScale = 0.0, lastDampingPower = 0.0, lastSupportPower = 0.0;
+  Vec A = nullptr, a = nullptr;  // generalized-alpha only; saveState lends them, resumeFrom copies them
+};
+
 class Dynamics {
 public:
   using StepCallback = std::function<PetscErrorCode(const DynamicsStep&, Vec X, Vec V)>;
@@ -83,6 +94,19 @@ public:
   // elsewhere), at the current state of the integration (inside a step callback, or after run()).
   PetscErrorCode supportForce(Vec F);
   const char* schemeName() const { return _schemeName.c_str(); }
+
+  // Checkpoints. saveState: the state at the current TS time (inside a step callback, or after
+  // run()); A and a are borrowed, valid until the next step. resumeFrom: the next run() continues
+  // from that state (X, V passed to run() hold its coordinates and velocities) instead of the
+  // consistent start. exactRestart: whether that continues the trajectory to solver tolerance
+  // (generalized-alpha family and RK4; BDF and ABM4 restart their multistep start-up).
+  PetscErrorCode saveState(ResumeState* s);
+  PetscErrorCode resumeFrom(const ResumeState& s);
+  bool exactRestart() const;
+  // A check run after every step on every rank; when it returns true on any rank, the run stops
+  // after that step (no failure; stoppedByRequest() is then true). E.g. a wall-time limit.
+  void setStopCheck(std::function<bool()> check) { _stopCheck = std::move(check); }
+  bool stoppedByRequest() const { return _stopped; }
 
 private:
   static PetscErrorCode formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx);
@@ -122,6 +146,10 @@ private:
   DynamicsStep _last;
   double _lastDampingPower = 0.0, _lastSupportPower = 0.0;
   NewtonFloor _floor;
+  std::function<bool()> _stopCheck;
+  bool _stopped = false;
+  bool _resuming = false;
+  ResumeState _resume;  // its A, a are owned copies while _resuming
   double _e0 = 0.0, _energyScale = 0.0, _blowUp = 0.0;  // blow-up guard (monitor, postStep)
   DynamicsStep _blowUpAt;  // roundoffFloorConvergence
 };

@@ -53,6 +53,10 @@ PetscErrorCode GeneralizedAlphaSetRadius(TS ts, PetscReal rhoInf);
 PetscErrorCode GeneralizedAlphaSetAcceleration(TS ts, Vec A);
 // The acceleration at the current TS time (borrowed; valid until the next step).
 PetscErrorCode GeneralizedAlphaGetAcceleration(TS ts, Vec* A);
+// The acceleration-like variable a as well (borrowed), and both set together: a checkpoint of the
+// scheme's state at the current TS time (X, V are the TS solution).
+PetscErrorCode GeneralizedAlphaGetState(TS ts, Vec* A, Vec* a);
+PetscErrorCode GeneralizedAlphaSetState(TS ts, Vec A, Vec a);
 // Algebraic unknowns (mask 1: Lagrange multipliers of an index-3 system): their velocity and
 // accelerations are held at zero, so the predictor keeps their last value (copied).
 PetscErrorCode GeneralizedAlphaSetAlgebraic(TS ts, Vec mask);
