@@ -6,7 +6,8 @@
 //   strand plot KIND FILE [-o PNG]                charts (runs drivers/plot/strand_plot.py)
 //   strand help [COMMAND]
 //
-// Exit codes: 0 success, 1 internal error, 2 bad input (scene or options), 3 solve diverged.
+// Exit codes: 0 success, 1 internal error, 2 bad input (scene or options), 3 solve diverged,
+// 4 stopped at the wall-time limit with a checkpoint.
 #include <slepcsys.h>
 
 #include <unistd.h>
@@ -36,7 +37,8 @@ const char* kUsage =
     "  plot KIND ... charts from output files (campbell, lines); `strand plot --help`\n"
     "  help [CMD]    this text, or the help of one command\n"
     "\n"
-    "Exit codes: 0 success, 1 internal error, 2 bad input, 3 solve diverged.\n"
+    "Exit codes: 0 success, 1 internal error, 2 bad input, 3 solve diverged,\n"
+    "4 stopped at the wall-time limit (checkpoint written).\n"
     "Scenes are YAML files (docs/scene-reference.md); examples in meshes/.\n";
 
 const char* kRunHelp =
@@ -54,7 +56,11 @@ const char* kRunHelp =
     "                    (e.g. -dyn_ts_monitor, -dyn_snes_monitor); energies, time steps,\n"
     "                    Newton iterations and rejected steps in /series\n"
     "Options:\n"
-    "  -o FILE           output file\n"
+    "  -o FILE           output file (with -restart the default gets the suffix _restart)\n"
+    "  -checkpoint FILE  dynamic runs: checkpoint file (default <output stem>.ckpt.h5)\n"
+    "  -checkpoint_every N  write the checkpoint every N steps\n"
+    "  -wall_time S      stop after S seconds of integration: checkpoint, exit code 4\n"
+    "  -restart FILE     continue a dynamic run from a checkpoint (any number of ranks)\n"
     "  -log_view         PETSc performance summary (events Strand:*)\n"
     "Run under mpirun for parallel solves: mpirun -n 2 strand run SCENE\n";
 
