@@ -199,18 +199,31 @@ private:
     _writer->setAttribute("dt", d.dt);
     const bool moving = !_problem.model().hubMotions().empty();
     const bool joints = _problem.model().hasConstraints();
+    const bool timedLoads = _problem.assembler().hasTimedLoads();
+    // next dt_out time (a restart starts with the first multiple at or after its time)
+    double nextOut = d.dtOut > 0.0 && !_restart.scalars.empty() ? std::ceil(_restart.scalars.at("time") / d.dtOut - 1e-9) * d.dtOut : 0.0;
     const auto& rigid = _problem.model().rigidBodies();
     auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec Vs) -> PetscErrorCode {
       PetscFunctionBeginUser;
       _newtonTotal += s.newtonIterations;
       const bool last = s.time >= d.tEnd * (1.0 - 1e-12);
-      if (s.step % d.outputEvery == 0 || last) PetscCallCXX(writeFrame(Xs, s.time));
+      // frames every output_every steps, or at the first step at or after each multiple of dt_out
+      const double slack = 1e-9 * d.dt;
+      bool frame = last;
+      if (d.dtOut > 0.0) {
+        if (s.time >= nextOut - slack) frame = true;
+        while (nextOut <= s.time + slack) nextOut += d.dtOut;
+      } else if (s.step % d.outputEvery == 0) {
+        frame = true;
+      }
+      if (frame) PetscCallCXX(writeFrame(Xs, s.time));
       PetscCallCXX(_writer->writeScalarSeries("time", s.time));
       PetscCallCXX(_writer->writeScalarSeries("kinetic_energy", s.kinetic));
       PetscCallCXX(_writer->writeScalarSeries("strain_energy", s.strain));
       PetscCallCXX(_writer->writeScalarSeries("potential_energy", s.potential));
       PetscCallCXX(_writer->writeScalarSeries("dissipated_work", s.dissipated));
       if (moving) PetscCallCXX(_writer->writeScalarSeries("support_work", s.supportWork));
+      if (timedLoads) PetscCallCXX(_writer->writeScalarSeries("load_work", s.loadWork));
       if (joints) {
         PetscCallCXX(_writer->writeScalarSeries("constraint_position", s.constraintPosition));
         PetscCallCXX(_writer->writeScalarSeries("constraint_velocity", s.constraintVelocity));
@@ -271,6 +284,8 @@ private:
                  {"energy_scale", s.energyScale},
                  {"damping_power", s.lastDampingPower},
                  {"support_power", s.lastSupportPower},
+                 {"load_work", s.last.loadWork},
+                 {"load_power", s.lastLoadPower},
                  {"exact_restart", dyn.exactRestart() ? 1.0 : 0.0}};
     std::vector<std::pair<std::string, Vec>> vecs{{"X", X}, {"V", V}};
     if (s.A) vecs.push_back({"A", s.A});
@@ -324,6 +339,8 @@ private:
     s.energyScale = sc.count("energy_scale") ? sc.at("energy_scale") : 0.0;
     s.lastDampingPower = sc.count("damping_power") ? sc.at("damping_power") : 0.0;
     s.lastSupportPower = sc.count("support_power") ? sc.at("support_power") : 0.0;
+    s.last.loadWork = sc.count("load_work") ? sc.at("load_work") : 0.0;
+    s.lastLoadPower = sc.count("load_power") ? sc.at("load_power") : 0.0;
     auto load = [&](const char* name, Vec v) {
       static const std::vector<double> none;
       const auto it = _restart.vectors.find(name);

@@ -689,6 +689,23 @@ PetscErrorCode Assembler::freeDofs(IS* is) const {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::addTimedLoads(PetscReal t, Vec R, PetscReal scale) const {
+  PetscFunctionBeginUser;
+  if (_model.timedLoads().empty()) PetscFunctionReturn(0);
+  const PetscInt bs = _dofs.blockSize(), first = _dofs.ownedBegin(), owned = _dofs.ownedBlocks();
+  PetscScalar* r;
+  PetscCall(VecGetArray(R, &r));
+  for (const model::TimedLoad& l : _model.timedLoads()) {
+    const double g = scale * l.function.at(t).f;
+    for (size_t k = 0; k < l.dofs.size(); ++k) {
+      const PetscInt blk = _dofs.globalBlock()[l.dofs[k] / bs] - first;
+      if (blk >= 0 && blk < owned) r[blk * bs + l.dofs[k] % bs] += g * l.values[k];
+    }
+  }
+  PetscCall(VecRestoreArray(R, &r));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::gatherToRoot(Vec X, std::vector<double>& out) {
   PetscFunctionBeginUser;
   PetscCall(toModelOrder(X, out));

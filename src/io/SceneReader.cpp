@@ -566,7 +566,7 @@ void readPointMasses(const Field& f, BodyDesc& body) {
 }
 
 BodyDesc readBody(const Field& f, const Context& ctx) {
-  f.expectMap({"name", "element", "elements", "geometry", "section", "stress_free", "point_masses"});
+  f.expectMap({"name", "element", "elements", "geometry", "section", "stress_free", "point_masses", "initial_velocity"});
   BodyDesc body;
   body.mark = f.mark();
   const Field name = f.child("name");
@@ -589,6 +589,16 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
       stressFree.fail("'initial' is only allowed when dimension is 2");
   }
   if (const Field masses = f.child("point_masses"); masses.present()) readPointMasses(masses, body);
+  if (const Field v = f.child("initial_velocity"); v.present()) {
+    v.expectMap({"linear", "angular", "center"});
+    body.hasInitialVelocity = true;
+    if (const Field lin = v.child("linear"); lin.present()) body.linearVelocity = readVector(lin, ctx.dim);
+    if (const Field ang = v.child("angular"); ang.present()) {
+      if (ctx.dim == 2) body.angularVelocity[2] = ang.number();
+      else body.angularVelocity = readVector(ang, 3);
+    }
+    if (const Field c = v.child("center"); c.present()) body.velocityCenter = readVector(c, ctx.dim);
+  }
   return body;
 }
 
@@ -657,7 +667,7 @@ private:
 
   void readDynamics(const Field& f) {
     f.expectMap({"integrator", "rho_inf", "hht_alpha", "bdf_order", "adaptive", "rtol", "atol", "dt", "t_end",
-                 "output_every"});
+                 "output_every", "dt_out"});
     model::DynamicsDesc& d = scene_.dynamics;
     d.mark = f.mark();
     const Field integrator = f.child("integrator");
@@ -696,6 +706,10 @@ private:
     d.tEnd = requirePositive(f.child("t_end"));
     if (d.dt > d.tEnd) f.child("dt").fail("larger than t_end");
     if (const Field k = f.child("output_every"); k.present()) d.outputEvery = requireIntAtLeast(k, 1);
+    if (const Field o = f.child("dt_out"); o.present()) {
+      if (f.child("output_every").present()) o.fail("give either 'output_every' (steps) or 'dt_out' (seconds), not both");
+      d.dtOut = requirePositive(o);
+    }
   }
 
   // Dimensionless scales of the first body (seed 003): T* = sqrt(rho A L^4 / (E I)), L.
@@ -781,6 +795,8 @@ private:
     if (items.empty() && !rigidBodiesToo) f.fail("needs at least one body");
     for (const Field& item : items) {
       BodyDesc body = readBody(item, ctx_);
+      if (body.hasInitialVelocity && scene_.analysis != model::Analysis::Dynamic)
+        item.child("initial_velocity").fail("initial velocities need analysis: dynamic");
       for (const BodyDesc& other : scene_.bodies)
         if (other.name == body.name)
           item.child("name").fail("duplicate body name '" + body.name + "' (also " + other.mark.key +
@@ -980,7 +996,7 @@ private:
     if (const Field g = f.child("gravity"); g.present()) scene_.loads.gravity = readVector(g, ctx_.dim);
     if (const Field nodal = f.child("nodal"); nodal.present()) {
       for (const Field& item : nodal.items()) {
-        item.expectMap({"body", "node", "force", "moment"});
+        item.expectMap({"body", "node", "force", "moment", "function"});
         model::NodalLoadDesc load;
         load.mark = item.mark();
         load.at = readNodeRef(item);
@@ -988,6 +1004,14 @@ private:
           load.force = readVector(force, ctx_.dim);
         if (const Field moment = item.child("moment"); moment.present())
           load.moment = readMoment(moment, ctx_.dim);
+        if (const Field fn = item.child("function"); fn.present()) {
+          if (scene_.analysis != model::Analysis::Dynamic)
+            fn.fail("time-dependent loads need analysis: dynamic");
+          if (item.child("moment").present()) fn.fail("scales a force; give the moment as a separate, constant load");
+          if (!item.child("force").present()) fn.fail("needs a 'force' to scale");
+          load.timed = true;
+          load.function = readTimeFunction(fn);
+        }
         scene_.loads.nodal.push_back(std::move(load));
       }
     }

@@ -209,6 +209,15 @@ Model::Model(const SceneDescription& scene)
   for (const NodalLoadDesc& l : scene.loads.nodal) {
     const Body& b = findBody(l.at.body, l.at.mark);
     const int n = nodeIndex(l.at, b);
+    if (l.timed) {
+      TimedLoad t{l.function, {}, {}};
+      for (int i = 0; i < _dim; ++i) {
+        t.dofs.push_back(b.posBlock[n] * _dim + i);
+        t.values.push_back(l.force[i]);
+      }
+      _timed.push_back(std::move(t));
+      continue;
+    }
     for (int i = 0; i < _dim; ++i) _nodalForce[b.posBlock[n] * _dim + i] += l.force[i];
     if (l.moment[0] != 0.0 || l.moment[1] != 0.0 || l.moment[2] != 0.0) _moments.push_back({b.slopeBlock[n], l.moment});
   }
@@ -226,6 +235,32 @@ Model::Model(const SceneDescription& scene)
     }
     _nodalForce[rb.rotBlock * 2] += rd.torque;
     _v0[rb.rotBlock * 2] = rd.angularVelocity;
+  }
+  // initial velocities of cables: a rigid motion v = v_lin + w x (r - c), slopes w x r' (the slope
+  // coordinates are sigma r', and so are their rates)
+  for (size_t bi = 0; bi < scene.bodies.size(); ++bi) {
+    const BodyDesc& bd = scene.bodies[bi];
+    if (!bd.hasInitialVelocity) continue;
+    const Body& b = _bodies[bi];
+    const Vec3& w = bd.angularVelocity;
+    auto cross = [&](const double* r, double* out) {  // w x r in dim coordinates (2D: w = w_z e_z)
+      if (_dim == 2) {
+        out[0] = -w[2] * r[1];
+        out[1] = w[2] * r[0];
+      } else {
+        out[0] = w[1] * r[2] - w[2] * r[1];
+        out[1] = w[2] * r[0] - w[0] * r[2];
+        out[2] = w[0] * r[1] - w[1] * r[0];
+      }
+    };
+    for (int n = 0; n <= b.elements; ++n) {
+      double r[3], v[3];
+      for (int i = 0; i < _dim; ++i) r[i] = _q0[b.posBlock[n] * _dim + i] - bd.velocityCenter[i];
+      cross(r, v);
+      for (int i = 0; i < _dim; ++i) _v0[b.posBlock[n] * _dim + i] = bd.linearVelocity[i] + v[i];
+      cross(&_q0[b.slopeBlock[n] * _dim], v);
+      for (int i = 0; i < _dim; ++i) _v0[b.slopeBlock[n] * _dim + i] = v[i];
+    }
   }
   // 6. joint equations (directions from the initial state), checked at the initial state
   auto end = [&](const JointEndDesc& e, Joint& j, int* slopeBlock) -> elements::JointField {

@@ -229,6 +229,7 @@ PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
   PetscCall(VecSet(A, 0.0));
   PetscCall(_asm.prescribedMotion(0.0, nullptr, nullptr, A));
   PetscCall(_asm.residual(X, _damped ? V : nullptr, _w1));
+  PetscCall(_asm.addTimedLoads(0.0, _w1, -1.0));
   PetscCall(MatMultAdd(_M, A, _w1, _w1));
   PetscCall(_asm.zeroSupportedRows(_w1));
   PetscCall(VecScale(_w1, -1.0));
@@ -274,9 +275,12 @@ PetscErrorCode Dynamics::supportForce(Vec F) {
     PetscFunctionReturn(0);
   }
   Vec X, V, A;
+  PetscReal t;
   PetscCall(TS2GetSolution(_ts, &X, &V));
+  PetscCall(TSGetTime(_ts, &t));
   PetscCall(currentAcceleration(&A));
   PetscCall(_asm.residual(X, _damped ? V : nullptr, F, assembly::SupportRows::Reaction));
+  PetscCall(_asm.addTimedLoads(t, F, -1.0));
   PetscCall(MatMultAdd(_M, A, F, F));
   PetscCall(VecPointwiseMult(F, F, _supported));
   PetscFunctionReturn(0);
@@ -288,16 +292,18 @@ PetscErrorCode Dynamics::supportForceAt(PetscReal t, Vec X, Vec V, Vec F) {
   if (!_acc) PetscCall(VecDuplicate(_fext, &_acc));
   PetscCall(_space->acceleration(t, X, V, _acc));
   PetscCall(_asm.residual(X, _damped ? V : nullptr, F, assembly::SupportRows::Reaction));
+  PetscCall(_asm.addTimedLoads(t, F, -1.0));
   PetscCall(MatMultAdd(_M, _acc, F, F));
   PetscCall(VecPointwiseMult(F, F, _supported));
   PetscFunctionReturn(0);
 }
 
 // F = M A + f_int(U, V) - f_ext; zero on supported rows (the TS sets them).
-PetscErrorCode Dynamics::formFunction(TS, PetscReal, Vec U, Vec V, Vec A, Vec F, void* ctx) {
+PetscErrorCode Dynamics::formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
   PetscCall(self->_asm.residual(U, self->_damped ? V : nullptr, F, assembly::SupportRows::Reaction));
+  PetscCall(self->_asm.addTimedLoads(t, F, -1.0));
   PetscCall(MatMultAdd(self->_M, A, F, F));
   if (self->_moving) {  // the support force of this state; the last call of a step is at its end
     PetscCall(VecPointwiseMult(self->_reaction, F, self->_supported));
@@ -317,9 +323,15 @@ PetscErrorCode Dynamics::formJacobian(TS, PetscReal, Vec U, Vec V, Vec, PetscRea
 
 // v . f_d with the Kelvin-Voigt force f_d = f_int(u, v) - f_int(u, 0), and v . f_s with the
 // support force f_s (supportForce).
-PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support) {
+PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support, PetscReal* load) {
   PetscFunctionBeginUser;
-  *damping = *support = 0.0;
+  *damping = *support = *load = 0.0;
+  if (_asm.hasTimedLoads()) {
+    PetscCall(VecSet(_w1, 0.0));
+    PetscCall(_asm.addTimedLoads(t, _w1, 1.0));
+    PetscCall(_asm.zeroSupportedRows(_w1));
+    PetscCall(VecDot(_w1, V, load));
+  }
   if (_damped) {
     PetscCall(_asm.residual(X, V, _w1));
     PetscCall(_asm.residual(X, nullptr, _w2));
@@ -382,14 +394,16 @@ PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) 
   }
   PetscCall(self->energies(X, V, &s));
   if (self->_constrained) PetscCall(self->_asm.constraintViolation(X, V, &s.constraintPosition, &s.constraintVelocity));
-  PetscReal pd, ps;
-  PetscCall(self->powers(t, X, V, &pd, &ps));
+  PetscReal pd, ps, pl;
+  PetscCall(self->powers(t, X, V, &pd, &ps, &pl));
   const double half = 0.5 * (t - self->_last.time);
   s.dissipated = step > 0 ? self->_last.dissipated + half * (pd + self->_lastDampingPower) : 0.0;
   s.supportWork = step > 0 ? self->_last.supportWork + half * (ps + self->_lastSupportPower) : 0.0;
+  s.loadWork = step > 0 ? self->_last.loadWork + half * (pl + self->_lastLoadPower) : 0.0;
   self->_last = s;
   self->_lastDampingPower = pd;
   self->_lastSupportPower = ps;
+  self->_lastLoadPower = pl;
   if (self->_onStep && *self->_onStep) PetscCall((*self->_onStep)(s, X, V));
   // Blow-up guard: the schemes only remove energy (numerical dissipation), and a stable run's
   // balance error is O(h^2) small; energy *created* beyond half of the largest T + |U| + |P| + |W|
@@ -397,7 +411,8 @@ PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) 
   // rho_inf = 1: E - E0 went from -2e-3 J to 1e11 J = T within 50 steps, without a Newton failure).
   if (step == 0) self->_e0 = s.energy();
   self->_energyScale = std::max(self->_energyScale, s.kinetic + std::fabs(s.strain) + std::fabs(s.potential) +
-                                                        std::fabs(s.dissipated) + std::fabs(s.supportWork));
+                                                        std::fabs(s.dissipated) + std::fabs(s.supportWork) +
+                                                        std::fabs(s.loadWork));
   if (step > 0 && !(s.energy() - self->_e0 <= 0.5 * self->_energyScale)) {
     if (self->_blowUp == 0.0) self->_blowUpAt = s;  // TSStep resets the reason: postStep stops the run
     self->_blowUp = s.energy() - self->_e0;
@@ -448,6 +463,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     _energyScale = _resume.energyScale;
     _lastDampingPower = _resume.lastDampingPower;
     _lastSupportPower = _resume.lastSupportPower;
+    _lastLoadPower = _resume.lastLoadPower;
   } else {
     PetscCall(_asm.prescribedMotion(0.0, X, V, nullptr));
   }
@@ -549,6 +565,7 @@ PetscErrorCode Dynamics::saveState(ResumeState* s) {
   s->energyScale = _energyScale;
   s->lastDampingPower = _lastDampingPower;
   s->lastSupportPower = _lastSupportPower;
+  s->lastLoadPower = _lastLoadPower;
   s->A = s->a = nullptr;
   PetscBool ours = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));

@@ -280,6 +280,19 @@ TEST(Cli, FirstOrderIntegratorsRunAndAnUnstableExplicitStepStopsCleanly) {
                         "int(s['rejected_steps'][-1]) >= 0, s['time_step'][1:].min() > 0)\"");
     EXPECT_NE(h.output.find("ok BDF2 (adaptive step) 0.2000 True True"), std::string::npos) << h.output;
   }
+  // dt_out: a frame at the first step at or after each multiple of 0.05 s (the adaptive steps land
+  // anywhere): frames at t = 0, >= 0.05, >= 0.1, >= 0.15, and the last step at 0.2
+  const fs::path out = dir / "dtout.yaml";
+  std::ofstream(out) << withDynamics(
+      "dynamics: {integrator: bdf, adaptive: true, dt: 1e-4, t_end: 0.2, dt_out: 0.05}\n");
+  auto o = runCommand(strandBinary() + " run " + out.string() + " -o " + (dir / "dtout.h5").string());
+  ASSERT_EQ(o.exitCode, 0) << o.output;
+  if (haveH5py()) {
+    auto h = runCommand("/usr/bin/python3 -c \"import h5py; f = h5py.File('" + (dir / "dtout.h5").string() +
+                        "')['frames']; t = [f[k].attrs['time'] for k in sorted(f.keys())]; print(len(t), "
+                        "all(t[i] >= 0.05 * i - 1e-12 and t[i] < 0.05 * i + 0.02 for i in range(4)), '%.3f' % t[-1])\"");
+    EXPECT_NE(h.output.find("5 True 0.200"), std::string::npos) << h.output;
+  }
   auto r = runCommand(strandBinary() + " run " + rk4.string() + " -o " + (dir / "rk4.h5").string());
   EXPECT_EQ(r.exitCode, 3) << r.output;
   EXPECT_NE(r.output.find("RK4 (explicit) stopped at t = "), std::string::npos) << r.output;

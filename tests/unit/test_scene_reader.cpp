@@ -750,6 +750,37 @@ TEST(SceneReader, DynamicsSection) {
   EXPECT_TRUE(failsWith(edit(dyn, "dt: 1e-3", "dt: -1"), 13, "dynamics.dt", "must be positive"));
 }
 
+// requirement (issue 3): initial velocities of cables, time-dependent nodal forces and dt_out, with
+// their checks.
+TEST(SceneReader, InitialVelocityTimedLoadsAndDtOut) {
+  const std::string dyn = edit(edit(kBase2d, "analysis: static", "analysis: dynamic"),
+                               "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}\n",
+                               "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}\n"
+                               "    initial_velocity: {linear: [1, 2], angular: 3, center: [1, 0]}\n") +  // line 9
+                          "dynamics: {dt: 1e-3, t_end: 1, dt_out: 0.01}\n";                                 // line 14
+  const model::SceneDescription s = parseScene(edit(dyn, "force: [0, -1]}", "force: [0, -1], function: {function: "
+                                                                             "sine, amplitude: 2, frequency: 5}}"),
+                                               "scene.yaml");
+  EXPECT_TRUE(s.bodies[0].hasInitialVelocity);
+  EXPECT_DOUBLE_EQ(s.bodies[0].linearVelocity[1], 2.0);
+  EXPECT_DOUBLE_EQ(s.bodies[0].angularVelocity[2], 3.0);
+  EXPECT_DOUBLE_EQ(s.bodies[0].velocityCenter[0], 1.0);
+  ASSERT_EQ(s.loads.nodal.size(), 1u);
+  EXPECT_TRUE(s.loads.nodal[0].timed);
+  EXPECT_EQ(s.loads.nodal[0].function.kind, model::TimeFunction::Kind::Sine);
+  EXPECT_DOUBLE_EQ(s.dynamics.dtOut, 0.01);
+  EXPECT_TRUE(failsWith(edit(dyn, "analysis: dynamic", "analysis: static"), 9, "bodies[0].initial_velocity",
+                        "initial velocities need analysis: dynamic"));
+  EXPECT_TRUE(failsWith(edit(dyn, "angular: 3,", "spin: 3,"), 9, "bodies[0].initial_velocity.spin",
+                        "unknown key; allowed: linear, angular, center"));
+  EXPECT_TRUE(failsWith(edit(dyn, "force: [0, -1]}", "force: [0, -1], moment: 1, function: 2}"), 13,
+                        "loads.nodal[0].function", "scales a force"));
+  EXPECT_TRUE(failsWith(edit(kBase2d, "force: [0, -1]}", "force: [0, -1], function: 2}"), 12,
+                        "loads.nodal[0].function", "time-dependent loads need analysis: dynamic"));
+  EXPECT_TRUE(failsWith(edit(dyn, "dt_out: 0.01", "dt_out: 0.01, output_every: 3"), 14, "dynamics.dt_out",
+                        "give either 'output_every' (steps) or 'dt_out' (seconds), not both"));
+}
+
 TEST(SceneReader, HubSupportAndTimeFunctions) {
   const std::string base = edit(kBase2d, "analysis: static", "analysis: dynamic") +
                            "dynamics: {dt: 1e-3, t_end: 2}\n";

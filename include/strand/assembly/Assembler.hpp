@@ -68,6 +68,10 @@ public:
   // The constant applied loads f_ext (gravity, distributed and nodal forces) at the reference state;
   // nodal moments are evaluated there too (they follow the slope, so they are not constant).
   PetscErrorCode externalForce(Vec F);
+  // Time-dependent nodal forces (Model::timedLoads): R += scale * sum_k g_k(t) f_k on owned rows.
+  // Not part of residual() (which has no time); the integrators add them with scale -1.
+  bool hasTimedLoads() const { return !_model.timedLoads().empty(); }
+  PetscErrorCode addTimedLoads(PetscReal t, Vec R, PetscReal scale) const;
   // Consistent mass matrix with point masses; supported rows and columns are zero unless
   // maskSupports is false (prescribed motion: the inertia of moving supports loads the free DOFs).
   PetscErrorCode massMatrix(Mat M, bool maskSupports = true);

@@ -74,6 +74,13 @@ struct ReferenceScales {
   double slenderness() const;  // mu = sqrt(A L^2 / I) = sqrt(EA L^2 / EI)
 };
 
+// A nodal force scaled by a time function (dynamics): f(t) = function(t) * values on dofs.
+struct TimedLoad {
+  TimeFunction function;
+  std::vector<int> dofs;  // model numbering
+  std::vector<double> values;
+};
+
 struct NodalMomentLoad {
   int slopeBlock;
   Vec3 moment;
@@ -105,6 +112,7 @@ public:
   const std::vector<HubMotion>& hubMotions() const { return _hubs; }
   const std::vector<double>& nodalForces() const { return _nodalForce; } // constant nodal forces per DOF
   const std::vector<NodalMomentLoad>& nodalMoments() const { return _moments; }
+  const std::vector<TimedLoad>& timedLoads() const { return _timed; }  // not in nodalForces()
   const Vec3& gravity() const { return _gravity; }  // also acts on point masses
   // Rotating frame (absent: omega 0). The angular speed may be changed between solves (sweeps).
   const RotationDesc& rotation() const { return _rotation; }
@@ -122,6 +130,7 @@ private:
   std::vector<Coupling> _couplings;
   std::vector<double> _v0;
   std::vector<NodalMomentLoad> _moments;
+  std::vector<TimedLoad> _timed;
   std::vector<HubMotion> _hubs;
   Vec3 _gravity{};
   RotationDesc _rotation;

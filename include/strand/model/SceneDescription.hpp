@@ -57,6 +57,10 @@ struct BodyDesc {
   double dampAxial = 0.0, dampBending = 0.0;  // Kelvin-Voigt coefficients [s]
   bool stressFreeInitial = false;             // true: the initial shape is stress free (2D only)
   std::vector<PointMassDesc> pointMasses;
+  // initial velocity field of a rigid motion (dynamics): v = linear + angular x (r - center) for
+  // positions, angular x r' for slopes; 2D: angular about z (angularVelocity[2])
+  bool hasInitialVelocity = false;
+  Vec3 linearVelocity{}, angularVelocity{}, velocityCenter{};
   SourceMark mark;
 };
 
@@ -134,6 +138,8 @@ struct JointDesc {
 struct NodalLoadDesc {
   NodeRef at;
   Vec3 force{}, moment{};  // 2D uses x, y of force and z of moment
+  bool timed = false;      // force scaled by `function` (dynamics only; no moment then)
+  TimeFunction function;
   SourceMark mark;
 };
 
@@ -201,6 +207,7 @@ struct DynamicsDesc {
   double dt = 0.0;        // fixed step [s] (required; adaptive: the first step)
   double tEnd = 0.0;      // final time [s] (required)
   int outputEvery = 1;    // write a frame every k steps (and the last step)
+  double dtOut = 0.0;     // > 0: a frame at the first step at or after each multiple of dt_out instead
   SourceMark mark;
 };
 

@@ -33,8 +33,9 @@
 // Energy monitor (every step): kinetic T = v.M v / 2, strain U, potential of the constant loads
 // P = -f_ext.u, work dissipated by Kelvin-Voigt damping W_d = int v.f_d dt (f_d = f_int(u, v) -
 // f_int(u, 0)) and work done by the supports on the body W_s = int v.f_s dt (f_s = M a + f_int -
-// f_ext on supported rows; non-zero only for moving supports), both by the trapezoidal rule. The
-// balance E = T + U + P + W_d - W_s is constant for the exact motion.
+// f_ext on supported rows; non-zero only for moving supports) and the work of time-dependent loads
+// W_t = int v.f(t) dt, all by the trapezoidal rule. The balance E = T + U + P + W_d - W_s - W_t is
+// constant for the exact motion.
 #pragma once
 #include <petscts.h>
 
@@ -57,8 +58,9 @@ struct DynamicsStep {
   int rejectedSteps = 0;  // since the start (adaptive steps: error test or Newton failure)
   double timeStep = 0.0;  // of the step that ended here
   double kinetic = 0.0, strain = 0.0, potential = 0.0, dissipated = 0.0, supportWork = 0.0;
+  double loadWork = 0.0;  // work of the time-dependent loads, int v . f(t) dt (trapezoidal)
   double constraintPosition = 0.0, constraintVelocity = 0.0;  // max |g(q)|, max |G v| over the joints
-  double energy() const { return kinetic + strain + potential + dissipated - supportWork; }
+  double energy() const { return kinetic + strain + potential + dissipated - supportWork - loadWork; }
 };
 
 // What a checkpoint holds besides X and V, to continue a run exactly (Dynamics::saveState,
@@ -68,7 +70,7 @@ struct ResumeState {
   double time = 0.0;
   int step = 0;
   DynamicsStep last;
-  double e0 = 0.0, energyScale = 0.0, lastDampingPower = 0.0, lastSupportPower = 0.0;
+  double e0 = 0.0, energyScale = 0.0, lastDampingPower = 0.0, lastSupportPower = 0.0, lastLoadPower = 0.0;
   Vec A = nullptr, a = nullptr;  // generalized-alpha only; saveState lends them, resumeFrom copies them
 };
 
@@ -119,7 +121,7 @@ private:
   PetscErrorCode initialAcceleration(Vec X, Vec V, Vec A);
   PetscErrorCode createMassSolver(Vec X, KSP* ksp);
   PetscErrorCode currentAcceleration(Vec* A);
-  PetscErrorCode powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support);
+  PetscErrorCode powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support, PetscReal* load);
   PetscErrorCode supportForceAt(PetscReal t, Vec X, Vec V, Vec F);  // first-order form
   PetscErrorCode monitorState(PetscInt step, PetscReal t, Vec X, Vec V);
   PetscErrorCode highestFrequency(Vec X, PetscReal* omega);
@@ -144,7 +146,7 @@ private:
   AlphaParams _params{0.0, 0.0, 0.5, 0.25};
   const StepCallback* _onStep = nullptr;
   DynamicsStep _last;
-  double _lastDampingPower = 0.0, _lastSupportPower = 0.0;
+  double _lastDampingPower = 0.0, _lastSupportPower = 0.0, _lastLoadPower = 0.0;
   NewtonFloor _floor;
   std::function<bool()> _stopCheck;
   bool _stopped = false;
