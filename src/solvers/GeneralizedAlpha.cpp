@@ -18,6 +18,7 @@ struct AlphaData {
   PrescribeFn prescribe = nullptr;
   void* prescribeCtx = nullptr;
   Vec differential = nullptr;  // 0 on algebraic entries (multipliers), 1 elsewhere; null: none
+  int predictor = 2;           // X1 = X0 (0), + h V0 (1), + h^2/2 A0 (2)
 };
 
 AlphaData* dataOf(TS ts) { return static_cast<AlphaData*>(ts->data); }
@@ -81,9 +82,9 @@ PetscErrorCode step(TS ts) {
     d->stageTime = ts->ptime + h;  // equilibrium at t_{n+1}
     d->shiftV = d->gamma / (d->beta * h);
     d->shiftA = (1.0 - d->alphaM) / ((1.0 - d->alphaF) * d->beta * h * h);
-    Vec X1 = ts->vec_sol;  // predictor: constant acceleration
-    PetscCall(VecAXPY(X1, h, d->V0));
-    PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
+    Vec X1 = ts->vec_sol;  // predictor: constant acceleration (or velocity, or displacement)
+    if (d->predictor >= 1) PetscCall(VecAXPY(X1, h, d->V0));
+    if (d->predictor >= 2) PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
     if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, d->prescribeCtx));
     PetscCall(TSPreStage(ts, d->stageTime));
     PetscCall(SNESSolve(ts->snes, nullptr, X1));
@@ -169,6 +170,11 @@ PetscErrorCode setFromOptions(TS ts, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsReal("-ts_strand_alpha_alpha_f", "alpha_f", "GeneralizedAlphaSetParams", d->alphaF, &d->alphaF, nullptr));
   PetscCall(PetscOptionsReal("-ts_strand_alpha_gamma", "gamma", "GeneralizedAlphaSetParams", d->gamma, &d->gamma, nullptr));
   PetscCall(PetscOptionsReal("-ts_strand_alpha_beta", "beta", "GeneralizedAlphaSetParams", d->beta, &d->beta, nullptr));
+  const char* const predictors[] = {"displacement", "velocity", "acceleration", "Predictor", "", nullptr};
+  PetscInt which = d->predictor;
+  PetscCall(PetscOptionsEList("-ts_strand_alpha_predictor", "Newton start: X0, X0 + h V0, or X0 + h V0 + h^2/2 A0",
+                              "", predictors, 3, predictors[which], &which, nullptr));
+  d->predictor = static_cast<int>(which);
   PetscOptionsHeadEnd();
   PetscFunctionReturn(0);
 }

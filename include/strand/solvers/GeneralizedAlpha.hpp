@@ -26,7 +26,9 @@
 //   - prescribed motion: a callback overwrites the prescribed entries of X1 at t_{n+1} after the
 //     predictor, so rheonomic supports hold exactly at the end of the step (the residual rows of
 //     those entries must be zero, the Jacobian rows unit);
-//   - predictor X1 = X0 + h V0 + h^2/2 A0 (constant acceleration) instead of X1 = X0;
+//   - predictor X1 = X0 + h V0 + h^2/2 A0 (constant acceleration) instead of X1 = X0
+//     (-ts_strand_alpha_predictor displacement | velocity | acceleration; displacement is the
+//     robust start for fine, stiff meshes under suddenly applied loads, docs/performance.md);
 //   - index-3 constraints (Arnold & Bruls 2007, Sec. 4): Lagrange multipliers are entries of X
 //     marked algebraic; their rows hold s g(q1) at t_{n+1}, so the position constraints hold to
 //     Newton tolerance at every step (no drift).
