@@ -18,6 +18,9 @@ int runScene(const char* scenePath, RunMode mode);
 // `strand sweep SCENE`: the scene's `sweep` of the linearized modes (SweepCommand.cpp).
 int runSweepScene(const char* scenePath);
 
+// `strand bench work-precision SCENE` (BenchCommand.cpp).
+int runWorkPrecision(const char* scenePath);
+
 extern const char* kVersion;
 
 // Runs `body` on every rank and turns exceptions into exit codes and one message (RunCommand.cpp):

@@ -373,3 +373,32 @@ TEST(Cli, RestartContinuesTheTrajectoryAndAWallTimeLimitStopsCleanly) {
       << dt.output;
   fs::remove_all(dir);
 }
+
+// `strand bench work-precision` (issue 3): one JSON line per scheme and step (failed runs marked,
+// error null), a reference line, and the PNG chart; bad scheme names are bad input.
+TEST(Cli, WorkPrecisionBenchWritesJsonLinesAndAChart) {
+  const fs::path dir = scratchDir("work-precision");
+  const std::string scene = sourceDir() + "/meshes/flexible-pendulum.yaml";
+  const std::string stem = (dir / "wp").string();
+  auto r = runCommand(strandBinary() + " bench work-precision " + scene +
+                      " -schemes generalized_alpha:0.9,rk4 -dts 1e-3,2.5e-4 -reference rk4@1e-4 -o " + stem);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(stem + "_work_precision.jsonl");
+  std::string line;
+  int runs = 0, failed = 0, reference = 0;
+  while (std::getline(in, line)) {
+    if (line.find("\"bench\": \"work_precision_reference\"") != std::string::npos) ++reference;
+    if (line.find("\"bench\": \"work_precision\"") != std::string::npos) ++runs;
+    if (line.find("\"failed\": true, \"error\": null") != std::string::npos) ++failed;
+  }
+  EXPECT_EQ(reference, 1);
+  EXPECT_EQ(runs, 4);
+  EXPECT_EQ(failed, 1) << "rk4 at 1e-3 s is above its stability limit 3.3e-4 s";
+  if (haveH5py()) {  // the chart needs Debian's python3 with matplotlib (h5py stands for that here)
+    EXPECT_TRUE(fs::exists(stem + "_work_precision.png")) << r.output;
+  }
+  auto bad = runCommand(strandBinary() + " bench work-precision " + scene + " -schemes euler -o " + stem);
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("-schemes: unknown scheme 'euler'"), std::string::npos) << bad.output;
+  fs::remove_all(dir);
+}

@@ -153,7 +153,10 @@ private:
   bool _resuming = false;
   ResumeState _resume;  // its A, a are owned copies while _resuming
   double _e0 = 0.0, _energyScale = 0.0, _blowUp = 0.0;  // blow-up guard (monitor, postStep)
-  DynamicsStep _blowUpAt;  // roundoffFloorConvergence
+  DynamicsStep _blowUpAt;  // first step of the streak
+  int _overSteps = 0;      // consecutive steps with energy created beyond the guard's bound
+  double _energyFloor = 0.0;  // below it, created energy is noise: 1e-12 sum over cables of EA L
+  static constexpr int kBlowUpSteps = 5;
 };
 
 }  // namespace strand::solvers
