@@ -197,7 +197,7 @@ private:
         return now - start > _checkpoint.wallTime;
       });
     _writer->setAttribute("dt", d.dt);
-    const bool moving = !_problem.model().hubMotions().empty();
+    const bool moving = _problem.model().hasPrescribedMotion();
     const bool joints = _problem.model().hasConstraints();
     const bool timedLoads = _problem.assembler().hasTimedLoads();
     // next dt_out time (a restart starts with the first multiple at or after its time)

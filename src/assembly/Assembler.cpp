@@ -387,6 +387,11 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
       _moved.push_back({lb * bs, h, k});
     }
   }
+  for (int k = 0; k < static_cast<int>(model.prescribedCoordinates().size()); ++k) {
+    const int dof = model.prescribedCoordinates()[k].dof;
+    const PetscInt lb = dofs.localBlock(dofs.globalBlock()[dof / bs]);
+    if (lb >= 0 && lb < dofs.ownedBlocks()) _movedCoordinates.push_back({lb * bs + dof % bs, k});
+  }
   if (model.dim() == 2)
     _impl = std::make_unique<CableImpl<2>>(model, dofs, _q0Local);
   else
@@ -618,7 +623,7 @@ PetscErrorCode Assembler::massMatrix(Mat M, bool maskSupports) {
 
 PetscErrorCode Assembler::prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) const {
   PetscFunctionBeginUser;
-  if (_moved.empty()) PetscFunctionReturn(0);
+  if (_moved.empty() && _movedCoordinates.empty()) PetscFunctionReturn(0);
   PetscScalar *x = nullptr, *v = nullptr, *a = nullptr;
   if (X) PetscCall(VecGetArray(X, &x));
   if (V) PetscCall(VecGetArray(V, &v));
@@ -633,6 +638,12 @@ PetscErrorCode Assembler::prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) con
       if (v) v[m.owned + i] = du[i];
       if (a) a[m.owned + i] = ddu[i];
     }
+  }
+  for (const auto& [owned, k] : _movedCoordinates) {
+    const model::TimeValue f = _model.prescribedCoordinates()[k].function.at(t);
+    if (x) x[owned] = f.f;
+    if (v) v[owned] = f.df;
+    if (a) a[owned] = f.ddf;
   }
   if (X) PetscCall(VecRestoreArray(X, &x));
   if (V) PetscCall(VecRestoreArray(V, &v));

@@ -837,7 +837,7 @@ private:
   void readRigidBodies(const Field& f) {
     for (const Field& item : f.items()) {
       item.expectMap({"name", "mass", "inertia", "position", "angle", "velocity", "angular_velocity", "force",
-                      "torque", "fixed"});
+                      "torque", "fixed", "rotation"});
       if (ctx_.dim != 2) item.fail("rigid bodies are planar in this version: use dimension: 2");
       model::RigidBodyDesc r;
       r.mark = item.mark();
@@ -862,6 +862,15 @@ private:
           if (std::find(r.fixed.begin(), r.fixed.end(), k) != r.fixed.end()) e.fail("listed twice");
           r.fixed.push_back(k);
         }
+      }
+      if (const Field rot = item.child("rotation"); rot.present()) {
+        if (scene_.analysis != model::Analysis::Dynamic) rot.fail("a driven rotation needs analysis: dynamic");
+        if (std::find(r.fixed.begin(), r.fixed.end(), 2) != r.fixed.end())
+          rot.fail("phi is listed in 'fixed'; a driven body's phi follows 'rotation' instead");
+        if (item.child("angular_velocity").present())
+          rot.fail("the initial angular velocity of a driven body is the rotation's rate; remove 'angular_velocity'");
+        r.driven = true;
+        r.rotation = readTimeFunction(rot);
       }
       scene_.rigidBodies.push_back(std::move(r));
     }

@@ -175,6 +175,10 @@ Model::Model(const SceneDescription& scene)
   for (size_t r = 0; r < _rigid.size(); ++r) {
     _fixed[_rigid[r].rotBlock * 2 + 1] = 1;  // the unused coordinate of the rotation block
     for (int c : scene.rigidBodies[r].fixed) _fixed[(c < 2 ? _rigid[r].posBlock * 2 + c : _rigid[r].rotBlock * 2)] = 1;
+    if (scene.rigidBodies[r].driven) {  // phi = angle + rotation(t): the unknown u = rotation(t)
+      _fixed[_rigid[r].rotBlock * 2] = 1;
+      _prescribed.push_back({_rigid[r].rotBlock * 2, scene.rigidBodies[r].rotation});
+    }
   }
   for (const Joint& j : _joints)
     for (size_t k = 0; k < j.lambdaBlocks.size(); ++k)

@@ -16,7 +16,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   MPI_Comm comm = dofs.comm();
   for (const model::Body& b : assembler.model().bodies())
     _damped = _damped || b.section.dampAxial != 0.0 || b.section.dampBending != 0.0;
-  _moving = !assembler.model().hubMotions().empty();
+  _moving = assembler.model().hasPrescribedMotion();
   _constrained = assembler.hasConstraints();
   for (const model::Body& b : assembler.model().bodies()) _energyFloor += 1e-12 * b.section.EA * b.length;
   PetscCallAbort(comm, dofs.createMatrix(&_M, "dyn_mass_"));

@@ -856,6 +856,18 @@ TEST(SceneReader, RigidBodiesAndJoints) {
       "joints: [{type: pin, a: {body: rod, point: [-0.5, 0]}, b: {ground: [0, 0]}}]\ndynamics: {dt: 1e-3, t_end: 1}\n",
       "rigid.yaml");
   EXPECT_TRUE(r.bodies.empty());
+  // a driven rigid body: phi = angle + rotation(t), dynamics only, not also fixed or given a rate
+  const std::string driven =
+      "analysis: dynamic\ndimension: 2\nrigid_bodies: [{name: hub, mass: 1, inertia: 1, position: [0, 0], "
+      "fixed: [x, y], rotation: {function: spin_up, omega: 4, duration: 15}}]\ndynamics: {dt: 1e-3, t_end: 1}\n";
+  const model::SceneDescription dr = parseScene(driven, "driven.yaml");
+  ASSERT_EQ(dr.rigidBodies.size(), 1u);
+  EXPECT_TRUE(dr.rigidBodies[0].driven);
+  EXPECT_EQ(dr.rigidBodies[0].rotation.kind, model::TimeFunction::Kind::SpinUp);
+  EXPECT_TRUE(failsWith(edit(driven, "fixed: [x, y]", "fixed: [x, y, phi]"), 3, "rigid_bodies[0].rotation",
+                        "phi is listed in 'fixed'"));
+  EXPECT_TRUE(failsWith(edit(driven, "analysis: dynamic", "analysis: static"), 3, "rigid_bodies[0].rotation",
+                        "a driven rotation needs analysis: dynamic"));
   // the first-order integrators take no joints (no multipliers); the message says what to use
   const std::string pinned =
       "analysis: dynamic\ndimension: 2\nrigid_bodies: [{name: rod, mass: 1, inertia: 0.1, position: [0.5, 0]}]\n"

@@ -76,7 +76,8 @@ public:
   // maskSupports is false (prescribed motion: the inertia of moving supports loads the free DOFs).
   PetscErrorCode massMatrix(Mat M, bool maskSupports = true);
   // Sets the supported entries of X, V, A (each may be null) to the prescribed motion at time t:
-  // hub supports follow their rotation (model/HubMotion.hpp), the others stay at zero.
+  // hub supports follow their rotation (model/HubMotion.hpp), driven rigid bodies' phi their
+  // rotation(t), the others stay at zero.
   PetscErrorCode prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) const;
   // Zeroes the supported rows of R.
   PetscErrorCode zeroSupportedRows(Vec R) const;
@@ -122,6 +123,7 @@ private:
     int hub, block;  // HubMotion and index into its blocks
   };
   std::vector<MovedBlock> _moved;          // owned blocks of hub supports
+  std::vector<std::pair<PetscInt, int>> _movedCoordinates;  // owned index, Model::prescribedCoordinates() index
   std::vector<double> _q0Local;            // initial coordinates, ghosted local form
   std::vector<double> _nodalForceOwned;    // constant nodal forces on owned DOFs
   VecScatter _toRoot = nullptr;

@@ -110,6 +110,13 @@ public:
   const std::vector<double>& initialVelocities() const { return _v0; }
   // Supports on turning hubs (their DOFs are among fixedDofs; the others stay at zero displacement).
   const std::vector<HubMotion>& hubMotions() const { return _hubs; }
+  // Single prescribed coordinates (a driven rigid body's phi): u = function(t), among fixedDofs.
+  struct PrescribedCoordinate {
+    int dof;  // model numbering
+    TimeFunction function;
+  };
+  const std::vector<PrescribedCoordinate>& prescribedCoordinates() const { return _prescribed; }
+  bool hasPrescribedMotion() const { return !_hubs.empty() || !_prescribed.empty(); }
   const std::vector<double>& nodalForces() const { return _nodalForce; } // constant nodal forces per DOF
   const std::vector<NodalMomentLoad>& nodalMoments() const { return _moments; }
   const std::vector<TimedLoad>& timedLoads() const { return _timed; }  // not in nodalForces()
@@ -132,6 +139,7 @@ private:
   std::vector<NodalMomentLoad> _moments;
   std::vector<TimedLoad> _timed;
   std::vector<HubMotion> _hubs;
+  std::vector<PrescribedCoordinate> _prescribed;
   Vec3 _gravity{};
   RotationDesc _rotation;
   ReferenceScales _scales;

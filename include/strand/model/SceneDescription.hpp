@@ -109,6 +109,8 @@ struct RigidBodyDesc {
   Vec3 force{};                           // constant applied force at the centre of mass [N]
   double torque = 0.0;                    // constant applied torque [N m]
   std::vector<int> fixed;                 // held coordinates: 0 x, 1 y, 2 phi
+  bool driven = false;                    // phi prescribed: angle + rotation(t) (a driven hub)
+  TimeFunction rotation;                  // dynamics only; e.g. spin_up (seed 001 Eq. 57)
   SourceMark mark;
 };
 
