@@ -291,6 +291,21 @@ private:
     if (s.A) vecs.push_back({"A", s.A});
     if (s.a) vecs.push_back({"a", s.a});
     for (const auto& [name, v] : vecs) PetscCallAbort(_comm, _problem.assembler().toModelOrder(v, c.vectors[name]));
+    // ABM4's history: f_k = (u', v') per entry, each half in model numbering
+    c.scalars["history_count"] = s.historyCount;
+    c.scalars["history_step"] = s.historyStep;
+    if (s.historyCount > 0) {
+      Vec u, v;
+      PetscCallAbort(_comm, VecDuplicate(X, &u));
+      PetscCallAbort(_comm, VecDuplicate(X, &v));
+      for (int k = 0; k < s.historyCount; ++k) {
+        PetscCallAbort(_comm, dyn.stateSpace()->unpack(s.history[k], u, v));
+        PetscCallAbort(_comm, _problem.assembler().toModelOrder(u, c.vectors["f" + std::to_string(k) + "_u"]));
+        PetscCallAbort(_comm, _problem.assembler().toModelOrder(v, c.vectors["f" + std::to_string(k) + "_v"]));
+      }
+      VecDestroy(&u);
+      VecDestroy(&v);
+    }
     io::writeCheckpoint(_comm, _checkpoint.path, c);
   }
 
@@ -359,9 +374,26 @@ private:
       s.A = A;
       s.a = a;
     }
+    const int historyCount = sc.count("history_count") ? static_cast<int>(sc.at("history_count")) : 0;
+    if (historyCount > 0 && dyn.stateSpace()) {
+      s.historyCount = historyCount;
+      s.historyStep = sc.at("history_step");
+      Vec hu, hv;
+      PetscCallAbort(_comm, VecDuplicate(X, &hu));
+      PetscCallAbort(_comm, VecDuplicate(X, &hv));
+      for (int k = 0; k < historyCount; ++k) {
+        load(("f" + std::to_string(k) + "_u").c_str(), hu);
+        load(("f" + std::to_string(k) + "_v").c_str(), hv);
+        PetscCallAbort(_comm, dyn.stateSpace()->createState(&s.history[k]));
+        PetscCallAbort(_comm, dyn.stateSpace()->pack(hu, hv, s.history[k]));
+      }
+      VecDestroy(&hu);
+      VecDestroy(&hv);
+    }
     PetscCallAbort(_comm, dyn.resumeFrom(s));
     VecDestroy(&A);
     VecDestroy(&a);
+    for (Vec& v : s.history) VecDestroy(&v);
     _firstStep = s.step;
     say("restart from " + path + " at t = " + fmt("%.6g", s.time) + " s, step " + std::to_string(s.step));
   }

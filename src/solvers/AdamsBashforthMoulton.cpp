@@ -17,6 +17,9 @@ struct AbmData {
   int history = 0;        // valid entries of f (they were taken with step h)
   PetscReal h = 0.0;
   PetscInt lastStep = -1; // ts->steps of the last step taken (a restarted TS resets the history)
+  Vec pending[4] = {};    // a history set before the first step (AdamsBashforthMoultonSetHistory)
+  int pendingCount = 0;
+  PetscReal pendingH = 0.0;
 };
 
 AbmData* dataOf(TS ts) { return static_cast<AbmData*>(ts->data); }
@@ -40,6 +43,13 @@ PetscErrorCode step(TS ts) {
   AbmData* d = dataOf(ts);
   PetscFunctionBeginUser;
   const PetscReal t = ts->ptime, h = ts->time_step;
+  if (d->pendingCount > 0) {  // continue a checkpointed history
+    for (int i = 0; i < d->pendingCount; ++i) PetscCall(VecCopy(d->pending[i], d->f[i]));
+    d->history = d->pendingCount;
+    d->h = d->pendingH;
+    d->lastStep = ts->steps - 1;
+    d->pendingCount = 0;
+  }
   if (ts->steps == 0 || ts->steps != d->lastStep + 1 || h != d->h) d->history = 0;
   PetscCall(VecCopy(ts->vec_sol, d->y0));
   if (d->history == 0) {
@@ -95,9 +105,11 @@ PetscErrorCode setUp(TS ts) {
 PetscErrorCode reset(TS ts) {
   AbmData* d = dataOf(ts);
   PetscFunctionBeginUser;
-  for (Vec* v : {&d->f[0], &d->f[1], &d->f[2], &d->f[3], &d->k[0], &d->k[1], &d->k[2], &d->k[3], &d->y0, &d->y1})
+  for (Vec* v : {&d->f[0], &d->f[1], &d->f[2], &d->f[3], &d->k[0], &d->k[1], &d->k[2], &d->k[3], &d->y0, &d->y1,
+                 &d->pending[0], &d->pending[1], &d->pending[2], &d->pending[3]})
     PetscCall(VecDestroy(v));
   d->history = 0;
+  d->pendingCount = 0;
   PetscFunctionReturn(0);
 }
 
@@ -131,6 +143,35 @@ PetscErrorCode create(TS ts) {
 }
 
 }  // namespace
+
+PetscErrorCode AdamsBashforthMoultonGetHistory(TS ts, PetscInt* count, PetscReal* h, Vec f[4]) {
+  PetscFunctionBeginUser;
+  PetscBool match;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ts), kTsAdamsBashforthMoulton, &match));
+  PetscCheck(match, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_WRONG, "TS is not %s",
+             kTsAdamsBashforthMoulton);
+  AbmData* d = dataOf(ts);
+  *count = d->history;
+  *h = d->h;
+  for (int i = 0; i < 4; ++i) f[i] = d->f[i];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AdamsBashforthMoultonSetHistory(TS ts, PetscInt count, PetscReal h, const Vec f[]) {
+  PetscFunctionBeginUser;
+  PetscBool match;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ts), kTsAdamsBashforthMoulton, &match));
+  PetscCheck(match && count >= 0 && count <= 4, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_WRONG,
+             "%s: a history of 0..4 entries", kTsAdamsBashforthMoulton);
+  AbmData* d = dataOf(ts);
+  for (PetscInt i = 0; i < count; ++i) {
+    if (!d->pending[i]) PetscCall(VecDuplicate(f[i], &d->pending[i]));
+    PetscCall(VecCopy(f[i], d->pending[i]));
+  }
+  d->pendingCount = static_cast<int>(count);
+  d->pendingH = h;
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode AdamsBashforthMoultonRegister() {
   static bool registered = false;

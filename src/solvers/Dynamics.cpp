@@ -131,6 +131,7 @@ Dynamics::~Dynamics() {
   VecDestroy(&_acc);
   VecDestroy(&_resume.A);
   VecDestroy(&_resume.a);
+  for (Vec& v : _resume.history) VecDestroy(&v);
   MatDestroy(&_M);
   MatDestroy(&_J);
   for (Vec* v : {&_fext, &_w1, &_w2, &_a0, &_supported, &_reaction, &_multipliers, &_notMultiplier}) VecDestroy(v);
@@ -490,6 +491,8 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     }
     PetscCall(_space->pack(X, V, _Y));
     PetscCall(TSSetSolution(_ts, _Y));
+    if (_resuming && _resume.historyCount > 0)
+      PetscCall(AdamsBashforthMoultonSetHistory(_ts, _resume.historyCount, _resume.historyStep, _resume.history));
     PetscCall(TSSolve(_ts, _Y));
     PetscCall(_space->unpack(_Y, X, V));
   } else {
@@ -564,6 +567,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
   if (_resuming) {
     PetscCall(VecDestroy(&_resume.A));
     PetscCall(VecDestroy(&_resume.a));
+    for (Vec& v : _resume.history) PetscCall(VecDestroy(&v));
     _resuming = false;
   }
   PetscFunctionReturn(0);
@@ -587,6 +591,14 @@ PetscErrorCode Dynamics::saveState(ResumeState* s) {
   PetscBool ours = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
   if (ours) PetscCall(GeneralizedAlphaGetState(_ts, &s->A, &s->a));
+  s->historyCount = 0;
+  if (_desc.integrator == model::Integrator::Abm4) {
+    PetscInt count;
+    PetscReal h;
+    PetscCall(AdamsBashforthMoultonGetHistory(_ts, &count, &h, s->history));
+    s->historyCount = static_cast<int>(count);
+    s->historyStep = h;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -594,8 +606,16 @@ PetscErrorCode Dynamics::resumeFrom(const ResumeState& s) {
   PetscFunctionBeginUser;
   PetscCall(VecDestroy(&_resume.A));
   PetscCall(VecDestroy(&_resume.a));
+  for (Vec& v : _resume.history) PetscCall(VecDestroy(&v));
   _resume = s;
   _resume.A = _resume.a = nullptr;
+  for (int i = 0; i < 4; ++i) {
+    _resume.history[i] = nullptr;
+    if (i < s.historyCount) {
+      PetscCall(VecDuplicate(s.history[i], &_resume.history[i]));
+      PetscCall(VecCopy(s.history[i], _resume.history[i]));
+    }
+  }
   PetscCheck(_firstOrder || (s.A && s.a), _asm.dofs().comm(), PETSC_ERR_ARG_NULL,
              "resuming %s needs the accelerations A and a", _schemeName.c_str());
   if (!_firstOrder) {
@@ -608,9 +628,7 @@ PetscErrorCode Dynamics::resumeFrom(const ResumeState& s) {
   PetscFunctionReturn(0);
 }
 
-bool Dynamics::exactRestart() const {
-  return !_firstOrder || _desc.integrator == model::Integrator::Rk4;
-}
+bool Dynamics::exactRestart() const { return _desc.integrator != model::Integrator::Bdf; }
 
 std::string Dynamics::failureHint(const DynamicsStep&) const {
   const bool undamped = _desc.integrator == model::Integrator::Newmark ||

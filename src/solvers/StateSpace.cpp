@@ -60,13 +60,21 @@ PetscErrorCode StateSpace::pack(Vec X, Vec V, Vec Y) {
   PetscFunctionReturn(0);
 }
 
+// A plain copy (no views: unpack may run while a view is held, e.g. in a step callback).
 PetscErrorCode StateSpace::unpack(Vec Y, Vec X, Vec V) {
   PetscFunctionBeginUser;
-  Vec u, v;
-  PetscCall(view(Y, &u, &v));
-  PetscCall(VecCopy(u, X));
-  PetscCall(VecCopy(v, V));
-  PetscCall(releaseView(Y));
+  const PetscScalar* y;
+  PetscScalar *x, *v;
+  PetscCall(VecGetArrayRead(Y, &y));
+  PetscCall(VecGetArray(X, &x));
+  PetscCall(VecGetArray(V, &v));
+  for (PetscInt i = 0; i < _n; ++i) {
+    x[i] = y[i];
+    v[i] = y[_n + i];
+  }
+  PetscCall(VecRestoreArray(V, &v));
+  PetscCall(VecRestoreArray(X, &x));
+  PetscCall(VecRestoreArrayRead(Y, &y));
   PetscFunctionReturn(0);
 }
 

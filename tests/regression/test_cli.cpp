@@ -341,6 +341,25 @@ TEST(Cli, RestartContinuesTheTrajectoryAndAWallTimeLimitStopsCleanly) {
                         "')['series']; print('%.3f %.3f %d' % (s['time'][0], s['time'][-1], len(s['time'])))\"");
     EXPECT_NE(h.output.find("0.800 1.000 201"), std::string::npos) << h.output;
   }
+  // ABM4 (a multistep scheme: the checkpoint carries its history f_n .. f_{n-3}) continues exactly too
+  const fs::path abm = dir / "abm4.yaml";
+  {
+    std::ifstream in(scene);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("dynamics:"), std::string::npos,
+                 "dynamics: {integrator: abm4, dt: 2e-5, t_end: 0.02, output_every: 100}\n");
+    std::ofstream(abm) << text;
+  }
+  auto abmFull = runCommand(strandBinary() + " run " + abm.string() + " -o " + (dir / "abm_full.h5").string());
+  ASSERT_EQ(abmFull.exitCode, 0) << abmFull.output;
+  auto abmPart = runCommand(strandBinary() + " run " + abm.string() + " -o " + (dir / "abm_part.h5").string() +
+                            " -checkpoint_every 403");
+  ASSERT_EQ(abmPart.exitCode, 0) << abmPart.output;
+  auto abmRest = runCommand(strandBinary() + " run " + abm.string() + " -restart " + (dir / "abm_part.ckpt.h5").string() +
+                            " -o " + (dir / "abm_r.h5").string());
+  ASSERT_EQ(abmRest.exitCode, 0) << abmRest.output;
+  EXPECT_NE(abmRest.output.find("step 806"), std::string::npos) << abmRest.output;
+  EXPECT_EQ(lastNode(abmRest.output), lastNode(abmFull.output)) << abmRest.output;
   // a wall-time limit of zero stops after the first step with a checkpoint and exit code 4
   const fs::path wallCkpt = dir / "wall.ckpt.h5";
   auto wall = runCommand(strandBinary() + " run " + scene + " -o " + (dir / "wall.h5").string() + " -wall_time 1e-9");

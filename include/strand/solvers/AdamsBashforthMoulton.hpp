@@ -28,5 +28,10 @@ inline constexpr const char* kTsAdamsBashforthMoulton = "strand_abm4";
 
 // Registers the TS type (idempotent; call after PetscInitialize).
 PetscErrorCode AdamsBashforthMoultonRegister();
+// The history f_n, f_{n-1}, ... (count valid entries, taken with step h) at the current TS time, for
+// checkpoints (borrowed; valid until the next step), and a history to continue from (copied; used by
+// the next step if its h matches, so a restarted run continues the trajectory exactly).
+PetscErrorCode AdamsBashforthMoultonGetHistory(TS ts, PetscInt* count, PetscReal* h, Vec f[4]);
+PetscErrorCode AdamsBashforthMoultonSetHistory(TS ts, PetscInt count, PetscReal h, const Vec f[]);
 
 }  // namespace strand::solvers

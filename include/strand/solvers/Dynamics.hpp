@@ -72,6 +72,9 @@ struct ResumeState {
   DynamicsStep last;
   double e0 = 0.0, energyScale = 0.0, lastDampingPower = 0.0, lastSupportPower = 0.0, lastLoadPower = 0.0;
   Vec A = nullptr, a = nullptr;  // generalized-alpha only; saveState lends them, resumeFrom copies them
+  int historyCount = 0;          // ABM4: f_n, f_{n-1}, ... in the first-order layout (state space)
+  double historyStep = 0.0;
+  Vec history[4] = {};
 };
 
 class Dynamics {
@@ -101,7 +104,7 @@ public:
   // run()); A and a are borrowed, valid until the next step. resumeFrom: the next run() continues
   // from that state (X, V passed to run() hold its coordinates and velocities) instead of the
   // consistent start. exactRestart: whether that continues the trajectory to solver tolerance
-  // (generalized-alpha family and RK4; BDF and ABM4 restart their multistep start-up).
+  // (generalized-alpha family, RK4 and ABM4; BDF restarts its multistep start-up).
   PetscErrorCode saveState(ResumeState* s);
   PetscErrorCode resumeFrom(const ResumeState& s);
   bool exactRestart() const;
@@ -109,6 +112,8 @@ public:
   // after that step (no failure; stoppedByRequest() is then true). E.g. a wall-time limit.
   void setStopCheck(std::function<bool()> check) { _stopCheck = std::move(check); }
   bool stoppedByRequest() const { return _stopped; }
+  // The first-order state layout (for checkpoints of ABM4's history); null for generalized-alpha.
+  StateSpace* stateSpace() { return _space.get(); }
 
 private:
   static PetscErrorCode formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx);

@@ -41,8 +41,8 @@ public:
   StateSpace& operator=(const StateSpace&) = delete;
 
   PetscErrorCode createState(Vec* Y) const;
-  PetscErrorCode pack(Vec X, Vec V, Vec Y);
-  PetscErrorCode unpack(Vec Y, Vec X, Vec V);
+  PetscErrorCode pack(Vec X, Vec V, Vec Y);    // copies
+  PetscErrorCode unpack(Vec Y, Vec X, Vec V);  // copies; allowed while a view is held
   // Read-only views of the halves of Y (valid until releaseView; one view at a time).
   PetscErrorCode view(Vec Y, Vec* X, Vec* V);
   PetscErrorCode releaseView(Vec Y);
