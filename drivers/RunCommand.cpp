@@ -11,6 +11,7 @@
 #include <memory>
 #include <sstream>
 
+#include "Checkpointing.hpp"
 #include "Commands.hpp"
 #include "Progress.hpp"
 #include "strand/core/Error.hpp"
@@ -24,9 +25,6 @@
 #include "strand/solvers/StaticSolver.hpp"
 
 namespace strand::drivers {
-namespace {
-
-}  // namespace
 
 const char* kVersion = "0.1.0";
 
@@ -46,40 +44,6 @@ std::string outputPath(const model::SceneDescription& scene) {
 }
 
 namespace {
-
-std::string stringOption(const char* name) {
-  char buf[PETSC_MAX_PATH_LEN] = "";
-  PetscBool set = PETSC_FALSE;
-  PetscOptionsGetString(nullptr, nullptr, name, buf, sizeof(buf), &set);
-  return set ? buf : "";
-}
-
-// Checkpoint options of `strand run` for dynamic scenes (docs/user-guide.md, "Batch jobs").
-struct CheckpointOptions {
-  std::string path;     // -checkpoint FILE, default <output stem>.ckpt.h5
-  int every = 0;        // -checkpoint_every N steps (0: only at the wall-time limit)
-  double wallTime = 0;  // -wall_time SECONDS (0: none)
-  std::string restart;  // -restart FILE
-};
-
-CheckpointOptions checkpointOptions(const std::string& output) {
-  CheckpointOptions o;
-  o.path = stringOption("-checkpoint");
-  if (o.path.empty()) {
-    const std::filesystem::path p(output);
-    o.path = (p.parent_path() / (p.stem().string() + ".ckpt.h5")).string();
-  }
-  PetscInt every = 0;
-  PetscReal wall = 0.0;
-  PetscOptionsGetInt(nullptr, nullptr, "-checkpoint_every", &every, nullptr);
-  PetscOptionsGetReal(nullptr, nullptr, "-wall_time", &wall, nullptr);
-  if (every < 0) throw InputError("-checkpoint_every " + std::to_string(every) + ": must be >= 0 (steps)");
-  if (wall < 0) throw InputError("-wall_time: must be >= 0 (seconds)");
-  o.every = static_cast<int>(every);
-  o.wallTime = wall;
-  o.restart = stringOption("-restart");
-  return o;
-}
 
 bool hasLoads(const model::SceneDescription& s) {
   auto nz = [](const model::Vec3& v) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; };
@@ -101,7 +65,8 @@ public:
     const bool dynamic = !modal && _scene.analysis == model::Analysis::Dynamic;
     if (dynamic) {
       _checkpoint = checkpointOptions(out);
-      if (!_checkpoint.restart.empty()) readRestart();  // bad input before any file is written
+      if (!_checkpoint.restart.empty())  // bad input before any file is written
+        _restart = readRestart(_comm, _scene, _problem.model(), _checkpoint.restart);
     }
     io::RunInfo info{_scene.file, modal ? "modes" : dynamic ? "dynamic" : "static", kVersion, m.dim()};
     _writer = std::make_unique<io::OutputWriter>(_comm, out, info, io::bodyLayouts(m, _scene.output.samplesPerElement));
@@ -186,7 +151,11 @@ private:
     PetscCallAbort(_comm, _problem.assembler().initialVelocity(V));
     solvers::Dynamics dyn(_problem.assembler(), d);
     PetscCallAbort(_comm, dyn.setFromOptions());
-    if (!_checkpoint.restart.empty()) resume(dyn, X, V);
+    if (!_checkpoint.restart.empty()) {
+      _firstStep = resumeDynamics(_comm, _restart, _checkpoint.restart, _problem, dyn, X, V);
+      say("restart from " + _checkpoint.restart + " at t = " + fmt("%.6g", _restart.scalars.at("time")) + " s, step " +
+          std::to_string(_firstStep));
+    }
     _writer->setAttribute("integrator", dyn.schemeName());
     PetscLogDouble start;
     PetscTime(&start);
@@ -244,7 +213,7 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("time_step", s.timeStep));
       PetscCallCXX(_writer->writeScalarSeries("rejected_steps", s.rejectedSteps));
       if (_checkpoint.every > 0 && s.step > _firstStep && s.step % _checkpoint.every == 0 && !last)
-        PetscCallCXX(writeCheckpoint(dyn, Xs, Vs));
+        PetscCallCXX(writeDynamicsCheckpoint(_comm, _scene, _problem, dyn, Xs, Vs, _checkpoint.path));
       _progress.update("t " + fmt("%.5g", s.time) + " s  step " + std::to_string(s.step) + "  Newton " +
                        std::to_string(s.newtonIterations) + "  E " + fmt("%.6e J", s.energy()),
                        s.time / d.tEnd);
@@ -253,7 +222,7 @@ private:
     PetscCallAbort(_comm, dyn.run(X, V, onStep, failure));
     int code = failure->empty() ? kExitSuccess : kExitDiverged;
     if (code == kExitSuccess && dyn.stoppedByRequest()) {
-      writeCheckpoint(dyn, X, V);
+      writeDynamicsCheckpoint(_comm, _scene, _problem, dyn, X, V, _checkpoint.path);
       solvers::ResumeState at;
       PetscCallAbort(_comm, dyn.saveState(&at));
       *failure = "stopped at the wall-time limit (-wall_time " + fmt("%g", _checkpoint.wallTime) + " s) at t = " +
@@ -265,137 +234,6 @@ private:
     }
     VecDestroy(&V);
     return code;
-  }
-
-  // The scene's integrator state in model numbering (io/Checkpoint.hpp).
-  void writeCheckpoint(solvers::Dynamics& dyn, Vec X, Vec V) {
-    solvers::ResumeState s;
-    PetscCallAbort(_comm, dyn.saveState(&s));
-    io::CheckpointData c;
-    c.scene = _scene.file;
-    c.integrator = dyn.schemeName();
-    c.scalars = {{"time", s.time},
-                 {"step", s.step},
-                 {"dt", _scene.dynamics.dt},
-                 {"coordinates", _problem.model().numDofs()},
-                 {"dissipated_work", s.last.dissipated},
-                 {"support_work", s.last.supportWork},
-                 {"energy_initial", s.e0},
-                 {"energy_scale", s.energyScale},
-                 {"damping_power", s.lastDampingPower},
-                 {"support_power", s.lastSupportPower},
-                 {"load_work", s.last.loadWork},
-                 {"load_power", s.lastLoadPower},
-                 {"exact_restart", dyn.exactRestart() ? 1.0 : 0.0}};
-    std::vector<std::pair<std::string, Vec>> vecs{{"X", X}, {"V", V}};
-    if (s.A) vecs.push_back({"A", s.A});
-    if (s.a) vecs.push_back({"a", s.a});
-    for (const auto& [name, v] : vecs) PetscCallAbort(_comm, _problem.assembler().toModelOrder(v, c.vectors[name]));
-    // ABM4's history: f_k = (u', v') per entry, each half in model numbering
-    c.scalars["history_count"] = s.historyCount;
-    c.scalars["history_step"] = s.historyStep;
-    if (s.historyCount > 0) {
-      Vec u, v;
-      PetscCallAbort(_comm, VecDuplicate(X, &u));
-      PetscCallAbort(_comm, VecDuplicate(X, &v));
-      for (int k = 0; k < s.historyCount; ++k) {
-        PetscCallAbort(_comm, dyn.stateSpace()->unpack(s.history[k], u, v));
-        PetscCallAbort(_comm, _problem.assembler().toModelOrder(u, c.vectors["f" + std::to_string(k) + "_u"]));
-        PetscCallAbort(_comm, _problem.assembler().toModelOrder(v, c.vectors["f" + std::to_string(k) + "_v"]));
-      }
-      VecDestroy(&u);
-      VecDestroy(&v);
-    }
-    io::writeCheckpoint(_comm, _checkpoint.path, c);
-  }
-
-  // -restart FILE: read and check against the scene (InputError names the file and what differs).
-  void readRestart() {
-    const std::string& path = _checkpoint.restart;
-    _restart = io::readCheckpoint(_comm, path);
-    const auto& sc = _restart.scalars;
-    auto need = [&](const char* key) {
-      if (!sc.count(key)) throw InputError(path + ": -restart: the checkpoint has no '" + key + "'");
-      return sc.at(key);
-    };
-    const model::DynamicsDesc& d = _scene.dynamics;
-    if (need("coordinates") != _problem.model().numDofs())
-      throw InputError(path + ": -restart: the checkpoint has " + fmt("%.0f", need("coordinates")) +
-                       " coordinates, this scene " + std::to_string(_problem.model().numDofs()) +
-                       ": it was written for another model");
-    if (std::fabs(need("dt") - d.dt) > 1e-12 * d.dt)
-      throw InputError(path + ": -restart: the checkpoint's dt " + fmt("%g", need("dt")) +
-                       " differs from dynamics.dt " + fmt("%g", d.dt) + " of " + _scene.file);
-    if (need("time") >= d.tEnd * (1.0 - 1e-12))
-      throw InputError(path + ": -restart: the checkpoint is at t = " + fmt("%g", need("time")) +
-                       " s, not before dynamics.t_end = " + fmt("%g", d.tEnd) + " s: nothing to continue");
-    need("step");
-  }
-
-  void resume(solvers::Dynamics& dyn, Vec X, Vec V) {
-    const std::string& path = _checkpoint.restart;
-    if (_restart.integrator != dyn.schemeName())
-      throw InputError(path + ": -restart: the checkpoint was written by " + _restart.integrator +
-                       ", the scene integrates with " + dyn.schemeName());
-    int missing = 0;
-    if (_rank == 0)
-      for (const char* n : {"X", "V"}) missing += _restart.vectors.count(n) ? 0 : 1;
-    MPI_Bcast(&missing, 1, MPI_INT, 0, _comm);
-    if (missing) throw InputError(path + ": -restart: the checkpoint lacks /X or /V");
-    const auto& sc = _restart.scalars;
-    solvers::ResumeState s;
-    s.time = sc.at("time");
-    s.step = static_cast<int>(std::lround(sc.at("step")));
-    s.last.time = s.time;
-    s.last.step = s.step;
-    s.last.dissipated = sc.count("dissipated_work") ? sc.at("dissipated_work") : 0.0;
-    s.last.supportWork = sc.count("support_work") ? sc.at("support_work") : 0.0;
-    s.e0 = sc.count("energy_initial") ? sc.at("energy_initial") : 0.0;
-    s.energyScale = sc.count("energy_scale") ? sc.at("energy_scale") : 0.0;
-    s.lastDampingPower = sc.count("damping_power") ? sc.at("damping_power") : 0.0;
-    s.lastSupportPower = sc.count("support_power") ? sc.at("support_power") : 0.0;
-    s.last.loadWork = sc.count("load_work") ? sc.at("load_work") : 0.0;
-    s.lastLoadPower = sc.count("load_power") ? sc.at("load_power") : 0.0;
-    auto load = [&](const char* name, Vec v) {
-      static const std::vector<double> none;
-      const auto it = _restart.vectors.find(name);
-      PetscCallAbort(_comm, _problem.assembler().fromModelOrder(it == _restart.vectors.end() ? none : it->second, v));
-    };
-    load("X", X);
-    load("V", V);
-    Vec A = nullptr, a = nullptr;
-    int hasAlpha = _rank == 0 && _restart.vectors.count("A") && _restart.vectors.count("a") ? 1 : 0;
-    MPI_Bcast(&hasAlpha, 1, MPI_INT, 0, _comm);
-    if (hasAlpha) {
-      PetscCallAbort(_comm, VecDuplicate(X, &A));
-      PetscCallAbort(_comm, VecDuplicate(X, &a));
-      load("A", A);
-      load("a", a);
-      s.A = A;
-      s.a = a;
-    }
-    const int historyCount = sc.count("history_count") ? static_cast<int>(sc.at("history_count")) : 0;
-    if (historyCount > 0 && dyn.stateSpace()) {
-      s.historyCount = historyCount;
-      s.historyStep = sc.at("history_step");
-      Vec hu, hv;
-      PetscCallAbort(_comm, VecDuplicate(X, &hu));
-      PetscCallAbort(_comm, VecDuplicate(X, &hv));
-      for (int k = 0; k < historyCount; ++k) {
-        load(("f" + std::to_string(k) + "_u").c_str(), hu);
-        load(("f" + std::to_string(k) + "_v").c_str(), hv);
-        PetscCallAbort(_comm, dyn.stateSpace()->createState(&s.history[k]));
-        PetscCallAbort(_comm, dyn.stateSpace()->pack(hu, hv, s.history[k]));
-      }
-      VecDestroy(&hu);
-      VecDestroy(&hv);
-    }
-    PetscCallAbort(_comm, dyn.resumeFrom(s));
-    VecDestroy(&A);
-    VecDestroy(&a);
-    for (Vec& v : s.history) VecDestroy(&v);
-    _firstStep = s.step;
-    say("restart from " + path + " at t = " + fmt("%.6g", s.time) + " s, step " + std::to_string(s.step));
   }
 
   void modes(Vec X) {

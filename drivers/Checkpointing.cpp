@@ -1,0 +1,177 @@
+// Checkpoints of dynamic runs (Checkpointing.hpp).
+#include "Checkpointing.hpp"
+
+#include <petscsys.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "Commands.hpp"
+#include "strand/core/Error.hpp"
+
+namespace strand::drivers {
+namespace {
+
+std::string stringOption(const char* name) {
+  char buf[PETSC_MAX_PATH_LEN] = "";
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsGetString(nullptr, nullptr, name, buf, sizeof(buf), &set);
+  return set ? buf : "";
+}
+
+}  // namespace
+
+CheckpointOptions checkpointOptions(const std::string& output) {
+  CheckpointOptions o;
+  o.path = stringOption("-checkpoint");
+  if (o.path.empty()) {
+    const std::filesystem::path p(output);
+    o.path = (p.parent_path() / (p.stem().string() + ".ckpt.h5")).string();
+  }
+  PetscInt every = 0;
+  PetscReal wall = 0.0;
+  PetscOptionsGetInt(nullptr, nullptr, "-checkpoint_every", &every, nullptr);
+  PetscOptionsGetReal(nullptr, nullptr, "-wall_time", &wall, nullptr);
+  if (every < 0) throw InputError("-checkpoint_every " + std::to_string(every) + ": must be >= 0 (steps)");
+  if (wall < 0) throw InputError("-wall_time: must be >= 0 (seconds)");
+  o.every = static_cast<int>(every);
+  o.wallTime = wall;
+  o.restart = stringOption("-restart");
+  return o;
+}
+
+// The scene's integrator state in model numbering (io/Checkpoint.hpp).
+void writeDynamicsCheckpoint(MPI_Comm comm, const model::SceneDescription& scene, solvers::Problem& problem,
+                             solvers::Dynamics& dyn, Vec X, Vec V, const std::string& path) {
+  solvers::ResumeState s;
+  PetscCallAbort(comm, dyn.saveState(&s));
+  io::CheckpointData c;
+  c.scene = scene.file;
+  c.integrator = dyn.schemeName();
+  c.scalars = {{"time", s.time},
+               {"step", s.step},
+               {"dt", scene.dynamics.dt},
+               {"coordinates", problem.model().numDofs()},
+               {"dissipated_work", s.last.dissipated},
+               {"support_work", s.last.supportWork},
+               {"energy_initial", s.e0},
+               {"energy_scale", s.energyScale},
+               {"damping_power", s.lastDampingPower},
+               {"support_power", s.lastSupportPower},
+               {"load_work", s.last.loadWork},
+               {"load_power", s.lastLoadPower},
+               {"exact_restart", dyn.exactRestart() ? 1.0 : 0.0}};
+  std::vector<std::pair<std::string, Vec>> vecs{{"X", X}, {"V", V}};
+  if (s.A) vecs.push_back({"A", s.A});
+  if (s.a) vecs.push_back({"a", s.a});
+  for (const auto& [name, v] : vecs) PetscCallAbort(comm, problem.assembler().toModelOrder(v, c.vectors[name]));
+  // ABM4's history: f_k = (u', v') per entry, each half in model numbering
+  c.scalars["history_count"] = s.historyCount;
+  c.scalars["history_step"] = s.historyStep;
+  if (s.historyCount > 0) {
+    Vec u, v;
+    PetscCallAbort(comm, VecDuplicate(X, &u));
+    PetscCallAbort(comm, VecDuplicate(X, &v));
+    for (int k = 0; k < s.historyCount; ++k) {
+      PetscCallAbort(comm, dyn.stateSpace()->unpack(s.history[k], u, v));
+      PetscCallAbort(comm, problem.assembler().toModelOrder(u, c.vectors["f" + std::to_string(k) + "_u"]));
+      PetscCallAbort(comm, problem.assembler().toModelOrder(v, c.vectors["f" + std::to_string(k) + "_v"]));
+    }
+    VecDestroy(&u);
+    VecDestroy(&v);
+  }
+  io::writeCheckpoint(comm, path, c);
+}
+
+// -restart FILE: read and check against the scene (InputError names the file and what differs).
+io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& scene, const model::Model& model,
+                               const std::string& path) {
+  io::CheckpointData data = io::readCheckpoint(comm, path);
+  const auto& sc = data.scalars;
+  auto need = [&](const char* key) {
+    if (!sc.count(key)) throw InputError(path + ": -restart: the checkpoint has no '" + key + "'");
+    return sc.at(key);
+  };
+  const model::DynamicsDesc& d = scene.dynamics;
+  if (need("coordinates") != model.numDofs())
+    throw InputError(path + ": -restart: the checkpoint has " + fmt("%.0f", need("coordinates")) +
+                     " coordinates, this scene " + std::to_string(model.numDofs()) +
+                     ": it was written for another model");
+  if (std::fabs(need("dt") - d.dt) > 1e-12 * d.dt)
+    throw InputError(path + ": -restart: the checkpoint's dt " + fmt("%g", need("dt")) +
+                     " differs from dynamics.dt " + fmt("%g", d.dt) + " of " + scene.file);
+  if (need("time") >= d.tEnd * (1.0 - 1e-12))
+    throw InputError(path + ": -restart: the checkpoint is at t = " + fmt("%g", need("time")) +
+                     " s, not before dynamics.t_end = " + fmt("%g", d.tEnd) + " s: nothing to continue");
+  need("step");
+  return data;
+}
+
+int resumeDynamics(MPI_Comm comm, const io::CheckpointData& data, const std::string& path, solvers::Problem& problem,
+                   solvers::Dynamics& dyn, Vec X, Vec V) {
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  if (data.integrator != dyn.schemeName())
+    throw InputError(path + ": -restart: the checkpoint was written by " + data.integrator +
+                     ", the scene integrates with " + dyn.schemeName());
+  int missing = 0;
+  if (rank == 0)
+    for (const char* n : {"X", "V"}) missing += data.vectors.count(n) ? 0 : 1;
+  MPI_Bcast(&missing, 1, MPI_INT, 0, comm);
+  if (missing) throw InputError(path + ": -restart: the checkpoint lacks /X or /V");
+  const auto& sc = data.scalars;
+  solvers::ResumeState s;
+  s.time = sc.at("time");
+  s.step = static_cast<int>(std::lround(sc.at("step")));
+  s.last.time = s.time;
+  s.last.step = s.step;
+  s.last.dissipated = sc.count("dissipated_work") ? sc.at("dissipated_work") : 0.0;
+  s.last.supportWork = sc.count("support_work") ? sc.at("support_work") : 0.0;
+  s.e0 = sc.count("energy_initial") ? sc.at("energy_initial") : 0.0;
+  s.energyScale = sc.count("energy_scale") ? sc.at("energy_scale") : 0.0;
+  s.lastDampingPower = sc.count("damping_power") ? sc.at("damping_power") : 0.0;
+  s.lastSupportPower = sc.count("support_power") ? sc.at("support_power") : 0.0;
+  s.last.loadWork = sc.count("load_work") ? sc.at("load_work") : 0.0;
+  s.lastLoadPower = sc.count("load_power") ? sc.at("load_power") : 0.0;
+  auto load = [&](const char* name, Vec v) {
+    static const std::vector<double> none;
+    const auto it = data.vectors.find(name);
+    PetscCallAbort(comm, problem.assembler().fromModelOrder(it == data.vectors.end() ? none : it->second, v));
+  };
+  load("X", X);
+  load("V", V);
+  Vec A = nullptr, a = nullptr;
+  int hasAlpha = rank == 0 && data.vectors.count("A") && data.vectors.count("a") ? 1 : 0;
+  MPI_Bcast(&hasAlpha, 1, MPI_INT, 0, comm);
+  if (hasAlpha) {
+    PetscCallAbort(comm, VecDuplicate(X, &A));
+    PetscCallAbort(comm, VecDuplicate(X, &a));
+    load("A", A);
+    load("a", a);
+    s.A = A;
+    s.a = a;
+  }
+  const int historyCount = sc.count("history_count") ? static_cast<int>(sc.at("history_count")) : 0;
+  if (historyCount > 0 && dyn.stateSpace()) {
+    s.historyCount = historyCount;
+    s.historyStep = sc.at("history_step");
+    Vec hu, hv;
+    PetscCallAbort(comm, VecDuplicate(X, &hu));
+    PetscCallAbort(comm, VecDuplicate(X, &hv));
+    for (int k = 0; k < historyCount; ++k) {
+      load(("f" + std::to_string(k) + "_u").c_str(), hu);
+      load(("f" + std::to_string(k) + "_v").c_str(), hv);
+      PetscCallAbort(comm, dyn.stateSpace()->createState(&s.history[k]));
+      PetscCallAbort(comm, dyn.stateSpace()->pack(hu, hv, s.history[k]));
+    }
+    VecDestroy(&hu);
+    VecDestroy(&hv);
+  }
+  PetscCallAbort(comm, dyn.resumeFrom(s));
+  VecDestroy(&A);
+  VecDestroy(&a);
+  for (Vec& v : s.history) VecDestroy(&v);
+  return s.step;
+}
+
+}  // namespace strand::drivers

@@ -1,0 +1,65 @@
+// Dynamics: the state a checkpoint needs to continue a run (Dynamics.hpp, ResumeState).
+#include "strand/solvers/AdamsBashforthMoulton.hpp"
+#include "strand/solvers/Dynamics.hpp"
+#include "strand/solvers/GeneralizedAlpha.hpp"
+
+namespace strand::solvers {
+
+PetscErrorCode Dynamics::saveState(ResumeState* s) {
+  PetscFunctionBeginUser;
+  PetscReal t;
+  PetscInt step;
+  PetscCall(TSGetTime(_ts, &t));
+  PetscCall(TSGetStepNumber(_ts, &step));
+  s->time = t;
+  s->step = static_cast<int>(step);
+  s->last = _last;
+  s->e0 = _e0;
+  s->energyScale = _energyScale;
+  s->lastDampingPower = _lastDampingPower;
+  s->lastSupportPower = _lastSupportPower;
+  s->lastLoadPower = _lastLoadPower;
+  s->A = s->a = nullptr;
+  PetscBool ours = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
+  if (ours) PetscCall(GeneralizedAlphaGetState(_ts, &s->A, &s->a));
+  s->historyCount = 0;
+  if (_desc.integrator == model::Integrator::Abm4) {
+    PetscInt count;
+    PetscReal h;
+    PetscCall(AdamsBashforthMoultonGetHistory(_ts, &count, &h, s->history));
+    s->historyCount = static_cast<int>(count);
+    s->historyStep = h;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Dynamics::resumeFrom(const ResumeState& s) {
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&_resume.A));
+  PetscCall(VecDestroy(&_resume.a));
+  for (Vec& v : _resume.history) PetscCall(VecDestroy(&v));
+  _resume = s;
+  _resume.A = _resume.a = nullptr;
+  for (int i = 0; i < 4; ++i) {
+    _resume.history[i] = nullptr;
+    if (i < s.historyCount) {
+      PetscCall(VecDuplicate(s.history[i], &_resume.history[i]));
+      PetscCall(VecCopy(s.history[i], _resume.history[i]));
+    }
+  }
+  PetscCheck(_firstOrder || (s.A && s.a), _asm.dofs().comm(), PETSC_ERR_ARG_NULL,
+             "resuming %s needs the accelerations A and a", _schemeName.c_str());
+  if (!_firstOrder) {
+    PetscCall(VecDuplicate(s.A, &_resume.A));
+    PetscCall(VecDuplicate(s.a, &_resume.a));
+    PetscCall(VecCopy(s.A, _resume.A));
+    PetscCall(VecCopy(s.a, _resume.a));
+  }
+  _resuming = true;
+  PetscFunctionReturn(0);
+}
+
+bool Dynamics::exactRestart() const { return _desc.integrator != model::Integrator::Bdf; }
+
+}  // namespace strand::solvers

@@ -1,0 +1,48 @@
+// Dynamics: what a failed run's message says to try, and the highest frequency behind an explicit
+// scheme's stability limit.
+#include <cmath>
+
+#include "strand/solvers/Dynamics.hpp"
+
+namespace strand::solvers {
+
+std::string Dynamics::failureHint(const DynamicsStep&) const {
+  const bool undamped = _desc.integrator == model::Integrator::Newmark ||
+                        (_desc.integrator == model::Integrator::GeneralizedAlpha && _desc.rhoInf >= 0.99);
+  if (_constrained && undamped)
+    return "Joints are index-3 constraints, and this member has no high-frequency damping (rho_inf = 1, like "
+           "the trapezoidal rule): the error of the multipliers is not damped and grows (Arnold & Bruls 2007). "
+           "Use rho_inf <= 0.9 (docs/user-guide.md, \"Joints\").";
+  if (_desc.integrator == model::Integrator::Bdf)
+    return _desc.adaptive ? "Try tighter rtol/atol, a smaller first dynamics.dt, or -dyn_snes_monitor."
+                          : "Try a smaller dynamics.dt, adaptive: true, or -dyn_snes_monitor.";
+  return "Try a smaller dynamics.dt, rho_inf < 1 to damp the highest modes, -dyn_ts_strand_alpha_predictor "
+         "displacement (fine, stiff meshes under suddenly applied loads; docs/performance.md), or -dyn_snes_monitor.";
+}
+
+// omega_max^2 = the largest eigenvalue of M^{-1} K at state X (free DOFs), by power iteration with
+// the factored mass: a lower bound that the iteration approaches from below (an estimate for the
+// failure message of an explicit scheme, not a verified number).
+PetscErrorCode Dynamics::highestFrequency(Vec X, PetscReal* omega) {
+  PetscFunctionBeginUser;
+  PetscCall(_asm.dynamicJacobian(X, nullptr, 0.0, 0.0, _J));  // K (unit rows at supports)
+  Vec z, w;
+  PetscCall(VecDuplicate(X, &z));
+  PetscCall(VecDuplicate(X, &w));
+  PetscCall(VecSetRandom(z, nullptr));
+  PetscCall(_asm.zeroSupportedRows(z));
+  PetscReal lambda = 0.0, norm;
+  for (int k = 0; k < 200; ++k) {
+    PetscCall(VecNormalize(z, &norm));
+    PetscCall(MatMult(_J, z, w));
+    PetscCall(_asm.zeroSupportedRows(w));
+    PetscCall(KSPSolve(_massSolver, w, z));
+    PetscCall(VecNorm(z, NORM_2, &lambda));
+  }
+  *omega = std::sqrt(lambda);
+  PetscCall(VecDestroy(&z));
+  PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace strand::solvers
