@@ -507,9 +507,10 @@ PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::residual(Vec X, Vec V, Vec R, SupportRows rows) {
+PetscErrorCode Assembler::residual(Vec X, Vec V, PetscReal t, Vec R, SupportRows rows) {
   PetscFunctionBeginUser;
-  PetscCall(assembleResidual(X, V, 1.0, R, rows));
+  PetscCall(assembleResidual(X, V, _model.loadFactor(t), R, rows));
+  PetscCall(addTimedLoads(t, R, -1.0, rows == SupportRows::Value));
   PetscFunctionReturn(0);
 }
 
@@ -700,7 +701,7 @@ PetscErrorCode Assembler::freeDofs(IS* is) const {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::addTimedLoads(PetscReal t, Vec R, PetscReal scale) const {
+PetscErrorCode Assembler::addTimedLoads(PetscReal t, Vec R, PetscReal scale, bool skipSupported) const {
   PetscFunctionBeginUser;
   if (_model.timedLoads().empty()) PetscFunctionReturn(0);
   const PetscInt bs = _dofs.blockSize(), first = _dofs.ownedBegin(), owned = _dofs.ownedBlocks();
@@ -710,7 +711,8 @@ PetscErrorCode Assembler::addTimedLoads(PetscReal t, Vec R, PetscReal scale) con
     const double g = scale * l.function.at(t).f;
     for (size_t k = 0; k < l.dofs.size(); ++k) {
       const PetscInt blk = _dofs.globalBlock()[l.dofs[k] / bs] - first;
-      if (blk >= 0 && blk < owned) r[blk * bs + l.dofs[k] % bs] += g * l.values[k];
+      const PetscInt i = blk * bs + l.dofs[k] % bs;
+      if (blk >= 0 && blk < owned && !(skipSupported && _fixedLocal[i])) r[i] += g * l.values[k];
     }
   }
   PetscCall(VecRestoreArray(R, &r));

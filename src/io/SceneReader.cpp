@@ -1001,7 +1001,12 @@ private:
   }
 
   void readLoads(const Field& f) {
-    f.expectMap({"gravity", "nodal", "distributed"});
+    f.expectMap({"gravity", "nodal", "distributed", "function"});
+    if (const Field fn = f.child("function"); fn.present()) {
+      if (scene_.analysis != model::Analysis::Dynamic) fn.fail("time-dependent loads need analysis: dynamic");
+      scene_.loads.timed = true;
+      scene_.loads.function = readTimeFunction(fn);
+    }
     if (const Field g = f.child("gravity"); g.present()) scene_.loads.gravity = readVector(g, ctx_.dim);
     if (const Field nodal = f.child("nodal"); nodal.present()) {
       for (const Field& item : nodal.items()) {

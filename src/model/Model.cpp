@@ -209,6 +209,7 @@ Model::Model(const SceneDescription& scene)
     }
   }
   // 5. loads
+  if (scene.loads.timed) _loadFunction = scene.loads.function;
   _nodalForce.assign(numDofs(), 0.0);
   for (const NodalLoadDesc& l : scene.loads.nodal) {
     const Body& b = findBody(l.at.body, l.at.mark);

@@ -235,8 +235,7 @@ PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
   }
   PetscCall(VecSet(A, 0.0));
   PetscCall(_asm.prescribedMotion(0.0, nullptr, nullptr, A));
-  PetscCall(_asm.residual(X, _damped ? V : nullptr, _w1));
-  PetscCall(_asm.addTimedLoads(0.0, _w1, -1.0));
+  PetscCall(_asm.residual(X, _damped ? V : nullptr, 0.0, _w1));
   PetscCall(MatMultAdd(_M, A, _w1, _w1));
   PetscCall(_asm.zeroSupportedRows(_w1));
   PetscCall(VecScale(_w1, -1.0));
@@ -286,8 +285,7 @@ PetscErrorCode Dynamics::supportForce(Vec F) {
   PetscCall(TS2GetSolution(_ts, &X, &V));
   PetscCall(TSGetTime(_ts, &t));
   PetscCall(currentAcceleration(&A));
-  PetscCall(_asm.residual(X, _damped ? V : nullptr, F, assembly::SupportRows::Reaction));
-  PetscCall(_asm.addTimedLoads(t, F, -1.0));
+  PetscCall(_asm.residual(X, _damped ? V : nullptr, t, F, assembly::SupportRows::Reaction));
   PetscCall(MatMultAdd(_M, A, F, F));
   PetscCall(VecPointwiseMult(F, F, _supported));
   PetscFunctionReturn(0);
@@ -298,8 +296,7 @@ PetscErrorCode Dynamics::supportForceAt(PetscReal t, Vec X, Vec V, Vec F) {
   PetscFunctionBeginUser;
   if (!_acc) PetscCall(VecDuplicate(_fext, &_acc));
   PetscCall(_space->acceleration(t, X, V, _acc));
-  PetscCall(_asm.residual(X, _damped ? V : nullptr, F, assembly::SupportRows::Reaction));
-  PetscCall(_asm.addTimedLoads(t, F, -1.0));
+  PetscCall(_asm.residual(X, _damped ? V : nullptr, t, F, assembly::SupportRows::Reaction));
   PetscCall(MatMultAdd(_M, _acc, F, F));
   PetscCall(VecPointwiseMult(F, F, _supported));
   PetscFunctionReturn(0);
@@ -309,8 +306,7 @@ PetscErrorCode Dynamics::supportForceAt(PetscReal t, Vec X, Vec V, Vec F) {
 PetscErrorCode Dynamics::formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
-  PetscCall(self->_asm.residual(U, self->_damped ? V : nullptr, F, assembly::SupportRows::Reaction));
-  PetscCall(self->_asm.addTimedLoads(t, F, -1.0));
+  PetscCall(self->_asm.residual(U, self->_damped ? V : nullptr, t, F, assembly::SupportRows::Reaction));
   PetscCall(MatMultAdd(self->_M, A, F, F));
   if (self->_moving) {  // the support force of this state; the last call of a step is at its end
     PetscCall(VecPointwiseMult(self->_reaction, F, self->_supported));
@@ -333,15 +329,16 @@ PetscErrorCode Dynamics::formJacobian(TS, PetscReal, Vec U, Vec V, Vec, PetscRea
 PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support, PetscReal* load) {
   PetscFunctionBeginUser;
   *damping = *support = *load = 0.0;
-  if (_asm.hasTimedLoads()) {
+  if (_asm.hasTimedLoads() || _asm.model().hasLoadFunction()) {  // v . f(t) of the time-dependent loads
     PetscCall(VecSet(_w1, 0.0));
     PetscCall(_asm.addTimedLoads(t, _w1, 1.0));
+    if (_asm.model().hasLoadFunction()) PetscCall(VecAXPY(_w1, _asm.model().loadFactor(t), _fext));
     PetscCall(_asm.zeroSupportedRows(_w1));
     PetscCall(VecDot(_w1, V, load));
   }
   if (_damped) {
-    PetscCall(_asm.residual(X, V, _w1));
-    PetscCall(_asm.residual(X, nullptr, _w2));
+    PetscCall(_asm.residual(X, V, t, _w1));
+    PetscCall(_asm.residual(X, nullptr, t, _w2));
     PetscCall(VecAXPY(_w1, -1.0, _w2));
     PetscCall(_asm.zeroSupportedRows(_w1));
     PetscCall(VecDot(_w1, V, damping));
@@ -362,7 +359,7 @@ PetscErrorCode Dynamics::energies(Vec X, Vec V, DynamicsStep* s) {
   s->kinetic = 0.5 * vmv;
   PetscCall(_asm.strainEnergy(X, &s->strain));
   PetscCall(VecDot(_fext, X, &fu));
-  s->potential = -fu;
+  s->potential = _asm.model().hasLoadFunction() ? 0.0 : -fu;  // time-scaled loads: their work instead
   PetscFunctionReturn(0);
 }
 

@@ -117,8 +117,7 @@ PetscErrorCode StateSpace::prescribe(PetscReal t, Vec Y) {
 PetscErrorCode StateSpace::acceleration(PetscReal t, Vec X, Vec V, Vec A) {
   PetscFunctionBeginUser;
   PetscCall(prescribedMotion(t));
-  PetscCall(_asm.residual(X, _damped ? V : nullptr, _w1));
-  PetscCall(_asm.addTimedLoads(t, _w1, -1.0));
+  PetscCall(_asm.residual(X, _damped ? V : nullptr, t, _w1));
   PetscCall(MatMultAdd(_M, _ap, _w1, _w1));
   PetscCall(_asm.zeroSupportedRows(_w1));
   PetscCall(VecScale(_w1, -1.0));
@@ -166,8 +165,7 @@ PetscErrorCode StateSpace::iFunction(TS, PetscReal t, Vec Y, Vec Ydot, Vec F, vo
   PetscCall(VecPointwiseMult(s->_w1, s->_w1, s->_supported));
   PetscCall(VecAXPY(r.u, 1.0, s->_w1));
   // v rows: M v~' + f_int - f_ext (free), v - v_p (supported)
-  PetscCall(s->_asm.residual(q.u, s->_damped ? q.v : nullptr, r.v));
-  PetscCall(s->_asm.addTimedLoads(t, r.v, -1.0));
+  PetscCall(s->_asm.residual(q.u, s->_damped ? q.v : nullptr, t, r.v));
   PetscCall(VecPointwiseMult(s->_w1, qd.v, s->_free));
   PetscCall(VecAXPY(s->_w1, 1.0, s->_ap));
   PetscCall(MatMultAdd(s->_M, s->_w1, r.v, r.v));

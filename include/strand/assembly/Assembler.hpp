@@ -57,10 +57,10 @@ public:
   PetscErrorCode staticResidual(Vec X, PetscReal loadFactor, Vec R);
   // Its Jacobian dR/dX (unit rows and columns at supports).
   PetscErrorCode staticJacobian(Vec X, PetscReal loadFactor, Mat J);
-  // Dynamic residual R(X, V) = f_int(X, V) - f_ext (elastic + Kelvin-Voigt damping, full loads,
-  // joint forces and equations);
-  // V may be null (no damping force). The inertia term M A is the integrator's.
-  PetscErrorCode residual(Vec X, Vec V, Vec R, SupportRows rows = SupportRows::Value);
+  // Dynamic residual R(X, V, t) = f_int(X, V) - f_ext(t) (elastic + Kelvin-Voigt damping, the loads
+  // at time t: the constant ones times Model::loadFactor(t) plus the timed nodal forces; joint forces
+  // and equations); V may be null (no damping force). The inertia term M A is the integrator's.
+  PetscErrorCode residual(Vec X, Vec V, PetscReal t, Vec R, SupportRows rows = SupportRows::Value);
   // Newton matrix of an implicit integrator: K + shiftV D + shiftA M with K = df_int/dX,
   // D = df_int/dV (Kelvin-Voigt), M the consistent mass; unit rows and columns at supports. With
   // D non-null (and V given), D alone is assembled there too (zero rows and columns at supports).
@@ -68,10 +68,10 @@ public:
   // The constant applied loads f_ext (gravity, distributed and nodal forces) at the reference state;
   // nodal moments are evaluated there too (they follow the slope, so they are not constant).
   PetscErrorCode externalForce(Vec F);
-  // Time-dependent nodal forces (Model::timedLoads): R += scale * sum_k g_k(t) f_k on owned rows.
-  // Not part of residual() (which has no time); the integrators add them with scale -1.
+  // Time-dependent nodal forces (Model::timedLoads): R += scale * sum_k g_k(t) f_k on owned rows
+  // (residual() includes them; the energy monitor uses this for their power).
   bool hasTimedLoads() const { return !_model.timedLoads().empty(); }
-  PetscErrorCode addTimedLoads(PetscReal t, Vec R, PetscReal scale) const;
+  PetscErrorCode addTimedLoads(PetscReal t, Vec R, PetscReal scale, bool skipSupported = false) const;
   // Consistent mass matrix with point masses; supported rows and columns are zero unless
   // maskSupports is false (prescribed motion: the inertia of moving supports loads the free DOFs).
   PetscErrorCode massMatrix(Mat M, bool maskSupports = true);

@@ -5,6 +5,7 @@
 // here in scene order ("model numbering"); DofMap renumbers them for the parallel layout.
 #pragma once
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,9 @@ public:
   const std::vector<double>& nodalForces() const { return _nodalForce; } // constant nodal forces per DOF
   const std::vector<NodalMomentLoad>& nodalMoments() const { return _moments; }
   const std::vector<TimedLoad>& timedLoads() const { return _timed; }  // not in nodalForces()
+  // loads.function: the factor of every constant load at time t (1 without one)
+  bool hasLoadFunction() const { return _loadFunction.has_value(); }
+  double loadFactor(double t) const { return _loadFunction ? _loadFunction->at(t).f : 1.0; }
   const Vec3& gravity() const { return _gravity; }  // also acts on point masses
   // Rotating frame (absent: omega 0). The angular speed may be changed between solves (sweeps).
   const RotationDesc& rotation() const { return _rotation; }
@@ -138,6 +142,7 @@ private:
   std::vector<double> _v0;
   std::vector<NodalMomentLoad> _moments;
   std::vector<TimedLoad> _timed;
+  std::optional<TimeFunction> _loadFunction;
   std::vector<HubMotion> _hubs;
   std::vector<PrescribedCoordinate> _prescribed;
   Vec3 _gravity{};

@@ -155,6 +155,8 @@ struct LoadsDesc {
   Vec3 gravity{};  // [m/s^2]; zero by default
   std::vector<NodalLoadDesc> nodal;
   std::vector<DistributedLoadDesc> distributed;
+  bool timed = false;     // dynamics: every constant load above (and rigid bodies' weight, force,
+  TimeFunction function;  // torque) scaled by function(t), e.g. a ramp that applies gravity gently
 };
 
 struct StaticDesc {
