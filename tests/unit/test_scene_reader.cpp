@@ -777,6 +777,15 @@ TEST(SceneReader, InitialVelocityTimedLoadsAndDtOut) {
                         "loads.nodal[0].function", "scales a force"));
   EXPECT_TRUE(failsWith(edit(kBase2d, "force: [0, -1]}", "force: [0, -1], function: 2}"), 12,
                         "loads.nodal[0].function", "time-dependent loads need analysis: dynamic"));
+  const model::SceneDescription ramp = parseScene(
+      edit(dyn, "  nodal: [{body: cable, node: last, force: [0, -1]}]\n",
+           "  nodal: [{body: cable, node: last, force: [0, -1]}]\n  function: {function: ramp, value: 1, start: 0, end: 0.1}\n"),
+      "scene.yaml");
+  EXPECT_TRUE(ramp.loads.timed);
+  EXPECT_EQ(ramp.loads.function.kind, model::TimeFunction::Kind::Ramp);
+  EXPECT_TRUE(failsWith(edit(kBase2d, "  nodal: [{body: cable, node: last, force: [0, -1]}]\n",
+                             "  nodal: [{body: cable, node: last, force: [0, -1]}]\n  function: 2\n"),
+                        13, "loads.function", "time-dependent loads need analysis: dynamic"));
   EXPECT_TRUE(failsWith(edit(dyn, "dt_out: 0.01", "dt_out: 0.01, output_every: 3"), 14, "dynamics.dt_out",
                         "give either 'output_every' (steps) or 'dt_out' (seconds), not both"));
 }
