@@ -154,16 +154,29 @@ int runWorkPrecision(const char* scenePath) {
       if (joints && model::isFirstOrder(schemes.back().integrator))
         throw InputError("-schemes: '" + s + "' takes no joints, and " + scenePath + " has joints");
     }
+    auto positive = [](const std::string& text, const char* what) {
+      double v = 0.0;
+      try {
+        v = std::stod(text);
+      } catch (const std::exception&) {
+        throw InputError(std::string(what) + ": '" + text + "' is not a number");
+      }
+      if (!(v > 0.0)) throw InputError(std::string(what) + ": '" + text + "' must be a positive step [s]");
+      return v;
+    };
     std::vector<double> dts;
-    for (const std::string& s : split(option("-dts", ""), ',')) dts.push_back(std::stod(s));
+    for (const std::string& s : split(option("-dts", ""), ',')) dts.push_back(positive(s, "-dts"));
     if (dts.empty())
       for (double f : {4.0, 2.0, 1.0, 0.5, 0.25}) dts.push_back(base.dt * f);
     double dtMin = dts[0];
     for (double h : dts) dtMin = std::min(dtMin, h);
     const std::string refSpec = option("-reference", joints ? "generalized_alpha:0.9" : "rk4");
-    model::DynamicsDesc ref = schemeFrom(split(refSpec, '@')[0], base);
     const auto refParts = split(refSpec, '@');
-    ref.dt = refParts.size() > 1 ? std::stod(refParts[1]) : dtMin / 8.0;
+    if (refParts.empty()) throw InputError("-reference: give SCHEME[@DT]");
+    model::DynamicsDesc ref = schemeFrom(refParts[0], base);
+    if (joints && model::isFirstOrder(ref.integrator))
+      throw InputError("-reference: '" + refSpec + "' takes no joints, and " + scenePath + " has joints");
+    ref.dt = refParts.size() > 1 ? positive(refParts[1], "-reference") : dtMin / 8.0;
     const std::filesystem::path stem = std::filesystem::path(option("-o", std::filesystem::path(scenePath).stem().string()));
     const std::string jsonl = stem.string() + "_work_precision.jsonl", png = stem.string() + "_work_precision.png";
     int rank;
@@ -194,14 +207,14 @@ int runWorkPrecision(const char* scenePath) {
         d.dt = h;
         const Outcome o = integrate(comm, scene, d);
         const bool failed = !o.failure.empty();
-        std::snprintf(line, sizeof(line),
-                      "{\"bench\": \"work_precision\", \"scene\": \"%s\", \"scheme\": \"%s\", \"dt\": %.6e, "
-                      "\"steps\": %ld, \"seconds\": %.6e, \"newton_per_step\": %.4f, \"failed\": %s, \"error\": %.6e}",
-                      jsonEscape(scenePath).c_str(), names[s].c_str(), h, o.steps, o.seconds, o.newtonPerStep,
-                      failed ? "true" : "false", failed ? NAN : distance(o.positions, reference.positions, dim));
-        std::string text = line;
-        if (failed) text.replace(text.find("nan"), 3, "null");
-        emit(text);
+        char error[32] = "null";  // failed runs have no error
+        if (!failed) std::snprintf(error, sizeof(error), "%.6e", distance(o.positions, reference.positions, dim));
+        std::ostringstream text;
+        text << "{\"bench\": \"work_precision\", \"scene\": \"" << jsonEscape(scenePath) << "\", \"scheme\": \""
+             << names[s] << "\", \"dt\": " << fmt("%.6e", h) << ", \"steps\": " << o.steps
+             << ", \"seconds\": " << fmt("%.6e", o.seconds) << ", \"newton_per_step\": " << fmt("%.4f", o.newtonPerStep)
+             << ", \"failed\": " << (failed ? "true" : "false") << ", \"error\": " << error << "}";
+        emit(text.str());
       }
     if (rank == 0) {
       out.close();

@@ -47,7 +47,7 @@ void writeDynamicsCheckpoint(MPI_Comm comm, const model::SceneDescription& scene
   PetscCallAbort(comm, dyn.saveState(&s));
   io::CheckpointData c;
   c.scene = scene.file;
-  c.integrator = dyn.schemeName();
+  c.integrator = dyn.signature();
   c.scalars = {{"time", s.time},
                {"step", s.step},
                {"dt", scene.dynamics.dt},
@@ -104,6 +104,37 @@ io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& sce
     throw InputError(path + ": -restart: the checkpoint is at t = " + fmt("%g", need("time")) +
                      " s, not before dynamics.t_end = " + fmt("%g", d.tEnd) + " s: nothing to continue");
   need("step");
+  // every dataset the restart will read, present and of the model's size (checked on rank 0)
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  std::string problem;
+  if (rank == 0) {
+    const size_t n = static_cast<size_t>(model.numDofs());
+    auto check = [&](const std::string& name) {
+      const auto it = data.vectors.find(name);
+      if (it == data.vectors.end()) problem = "the checkpoint lacks /" + name;
+      else if (it->second.size() != n)
+        problem = "/" + name + " has " + std::to_string(it->second.size()) + " values, the model " + std::to_string(n);
+    };
+    check("X");
+    check("V");
+    if (data.vectors.count("A") || data.vectors.count("a")) {
+      check("A");
+      check("a");
+    }
+    const double count = sc.count("history_count") ? sc.at("history_count") : 0.0;
+    if (!(count >= 0.0 && count <= 4.0) || count != std::floor(count)) problem = "history_count must be 0..4";
+    else if (count > 0.0 && !sc.count("history_step")) problem = "the checkpoint has no 'history_step'";
+    for (int k = 0; k < static_cast<int>(count) && problem.empty(); ++k) {
+      check("f" + std::to_string(k) + "_u");
+      check("f" + std::to_string(k) + "_v");
+    }
+  }
+  int len = static_cast<int>(problem.size());
+  MPI_Bcast(&len, 1, MPI_INT, 0, comm);
+  problem.resize(len);
+  MPI_Bcast(problem.data(), len, MPI_CHAR, 0, comm);
+  if (!problem.empty()) throw InputError(path + ": -restart: " + problem);
   return data;
 }
 
@@ -111,9 +142,9 @@ int resumeDynamics(MPI_Comm comm, const io::CheckpointData& data, const std::str
                    solvers::Dynamics& dyn, Vec X, Vec V) {
   int rank;
   MPI_Comm_rank(comm, &rank);
-  if (data.integrator != dyn.schemeName())
+  if (data.integrator != dyn.signature())
     throw InputError(path + ": -restart: the checkpoint was written by " + data.integrator +
-                     ", the scene integrates with " + dyn.schemeName());
+                     ", this run integrates with " + dyn.signature());
   int missing = 0;
   if (rank == 0)
     for (const char* n : {"X", "V"}) missing += data.vectors.count(n) ? 0 : 1;
@@ -143,6 +174,9 @@ int resumeDynamics(MPI_Comm comm, const io::CheckpointData& data, const std::str
   Vec A = nullptr, a = nullptr;
   int hasAlpha = rank == 0 && data.vectors.count("A") && data.vectors.count("a") ? 1 : 0;
   MPI_Bcast(&hasAlpha, 1, MPI_INT, 0, comm);
+  if (!hasAlpha && !dyn.stateSpace())
+    throw InputError(path + ": -restart: the checkpoint has no accelerations /A, /a (written with "
+                     "-dyn_ts_type alpha2, whose state is private: not restartable)");
   if (hasAlpha) {
     PetscCallAbort(comm, VecDuplicate(X, &A));
     PetscCallAbort(comm, VecDuplicate(X, &a));

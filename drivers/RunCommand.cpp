@@ -38,9 +38,13 @@ std::string outputPath(const model::SceneDescription& scene) {
   PetscBool restart = PETSC_FALSE;
   PetscOptionsHasName(nullptr, nullptr, "-restart", &restart);
   if (!restart) return path;
-  // a restarted run must not overwrite the output of the run it continues
+  // a restarted run must not overwrite the output of the run it continues, nor an earlier restart's
   const std::filesystem::path p(path);
-  return (p.parent_path() / (p.stem().string() + "_restart" + p.extension().string())).string();
+  for (int k = 1;; ++k) {
+    const std::string suffix = k == 1 ? "_restart" : "_restart" + std::to_string(k);
+    const std::filesystem::path candidate = p.parent_path() / (p.stem().string() + suffix + p.extension().string());
+    if (!std::filesystem::exists(candidate)) return candidate.string();
+  }
 }
 
 namespace {
@@ -212,7 +216,7 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
       PetscCallCXX(_writer->writeScalarSeries("time_step", s.timeStep));
       PetscCallCXX(_writer->writeScalarSeries("rejected_steps", s.rejectedSteps));
-      if (_checkpoint.every > 0 && s.step > _firstStep && s.step % _checkpoint.every == 0 && !last)
+      if (_checkpoint.every > 0 && s.step > _firstStep && s.step % _checkpoint.every == 0 && !last && !s.suspect)
         PetscCallCXX(writeDynamicsCheckpoint(_comm, _scene, _problem, dyn, Xs, Vs, _checkpoint.path));
       _progress.update("t " + fmt("%.5g", s.time) + " s  step " + std::to_string(s.step) + "  Newton " +
                        std::to_string(s.newtonIterations) + "  E " + fmt("%.6e J", s.energy()),

@@ -267,6 +267,8 @@ Model::Model(const SceneDescription& scene)
       for (int i = 0; i < _dim; ++i) _v0[b.slopeBlock[n] * _dim + i] = v[i];
     }
   }
+  for (int i = 0; i < numDofs(); ++i)  // supports hold their coordinates (hubs: the prescribed rate)
+    if (_fixed[i]) _v0[i] = 0.0;
   // 6. joint equations (directions from the initial state), checked at the initial state
   auto end = [&](const JointEndDesc& e, Joint& j, int* slopeBlock) -> elements::JointField {
     elements::JointField f;

@@ -74,6 +74,7 @@ PetscErrorCode step(TS ts) {
   PetscBool ok;
   PetscCall(TSAdaptCheckStage(ts->adapt, ts, t + h, ts->vec_sol, &ok));
   if (!ok) {
+    PetscCall(VecCopy(d->y0, ts->vec_sol));  // the last accepted state
     ts->reason = TS_DIVERGED_STEP_REJECTED;
     PetscFunctionReturn(0);
   }

@@ -266,14 +266,17 @@ PetscErrorCode Dynamics::currentAcceleration(Vec* A) {
 
 PetscErrorCode Dynamics::supportForce(Vec F) {
   PetscFunctionBeginUser;
-  if (_firstOrder) {
+  if (_firstOrder) {  // copies, not views: a step callback may hold the view
     Vec Y, X, V;
     PetscReal t;
     PetscCall(TSGetSolution(_ts, &Y));
     PetscCall(TSGetTime(_ts, &t));
-    PetscCall(_space->view(Y, &X, &V));
+    PetscCall(VecDuplicate(F, &X));
+    PetscCall(VecDuplicate(F, &V));
+    PetscCall(_space->unpack(Y, X, V));
     PetscCall(supportForceAt(t, X, V, F));
-    PetscCall(_space->releaseView(Y));
+    PetscCall(VecDestroy(&X));
+    PetscCall(VecDestroy(&V));
     PetscFunctionReturn(0);
   }
   if (_reactionValid) {  // from the last residual of the step (formFunction), at the same state
@@ -408,7 +411,6 @@ PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) 
   self->_lastDampingPower = pd;
   self->_lastSupportPower = ps;
   self->_lastLoadPower = pl;
-  if (self->_onStep && *self->_onStep) PetscCall((*self->_onStep)(s, X, V));
   // Blow-up guard: the schemes only remove energy (numerical dissipation), and a stable run's
   // balance error is O(h^2) small; energy *created* beyond half of the largest T + |U| + |P| + |W|
   // seen means the discrete solution has left the exact one for good (measured on the 20-link chain at
@@ -429,6 +431,9 @@ PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) 
   } else {
     self->_overSteps = 0;
   }
+  s.suspect = self->_overSteps > 0 || !std::isfinite(created);  // e.g. no checkpoint of this state
+  self->_last.suspect = s.suspect;
+  if (self->_onStep && *self->_onStep) PetscCall((*self->_onStep)(s, X, V));
   PetscFunctionReturn(0);
 }
 
@@ -448,7 +453,9 @@ PetscErrorCode Dynamics::postStep(TS ts) {
   if (self->_stopCheck) {  // every rank must stop at the same step
     int stop = self->_stopCheck() ? 1 : 0;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, PetscObjectComm(reinterpret_cast<PetscObject>(ts))));
-    if (stop && self->_blowUp == 0.0) {
+    TSConvergedReason reason;
+    PetscCall(TSGetConvergedReason(ts, &reason));
+    if (stop && self->_blowUp == 0.0 && reason == TS_CONVERGED_ITERATING) {  // not over a finish or a failure
       self->_stopped = true;
       PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
     }

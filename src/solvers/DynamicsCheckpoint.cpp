@@ -3,6 +3,8 @@
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
 
+#include <sstream>
+
 namespace strand::solvers {
 
 PetscErrorCode Dynamics::saveState(ResumeState* s) {
@@ -24,7 +26,9 @@ PetscErrorCode Dynamics::saveState(ResumeState* s) {
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
   if (ours) PetscCall(GeneralizedAlphaGetState(_ts, &s->A, &s->a));
   s->historyCount = 0;
-  if (_desc.integrator == model::Integrator::Abm4) {
+  PetscBool abm = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsAdamsBashforthMoulton, &abm));
+  if (abm) {
     PetscInt count;
     PetscReal h;
     PetscCall(AdamsBashforthMoultonGetHistory(_ts, &count, &h, s->history));
@@ -60,6 +64,22 @@ PetscErrorCode Dynamics::resumeFrom(const ResumeState& s) {
   PetscFunctionReturn(0);
 }
 
-bool Dynamics::exactRestart() const { return _desc.integrator != model::Integrator::Bdf; }
+bool Dynamics::exactRestart() const {
+  PetscBool alpha2 = PETSC_FALSE, bdf = PETSC_FALSE;
+  PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2);
+  PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSBDF, &bdf);
+  return !alpha2 && !bdf;  // TSALPHA2 and TSBDF keep their state private
+}
+
+std::string Dynamics::signature() const {
+  std::ostringstream o;
+  o << _schemeName;
+  if (_desc.integrator == model::Integrator::GeneralizedAlpha) o << " rho_inf " << _desc.rhoInf;
+  if (_desc.integrator == model::Integrator::Hht) o << " alpha " << _desc.hhtAlpha;
+  TSType type;
+  TSGetType(_ts, &type);
+  o << " / TS " << (type ? type : "?");
+  return o.str();
+}
 
 }  // namespace strand::solvers

@@ -57,6 +57,7 @@ struct DynamicsStep {
   int newtonIterations = 0;
   int rejectedSteps = 0;  // since the start (adaptive steps: error test or Newton failure)
   double timeStep = 0.0;  // of the step that ended here
+  bool suspect = false;   // the blow-up guard has seen energy created here (or a non-finite value)
   double kinetic = 0.0, strain = 0.0, potential = 0.0, dissipated = 0.0, supportWork = 0.0;
   double loadWork = 0.0;  // work of the time-dependent loads, int v . f(t) dt (trapezoidal)
   double constraintPosition = 0.0, constraintVelocity = 0.0;  // max |g(q)|, max |G v| over the joints
@@ -99,6 +100,8 @@ public:
   // elsewhere), at the current state of the integration (inside a step callback, or after run()).
   PetscErrorCode supportForce(Vec F);
   const char* schemeName() const { return _schemeName.c_str(); }
+  // The scheme with its parameters and the TS type that runs it (checkpoints must match it).
+  std::string signature() const;
 
   // Checkpoints. saveState: the state at the current TS time (inside a step callback, or after
   // run()); A and a are borrowed, valid until the next step. resumeFrom: the next run() continues
