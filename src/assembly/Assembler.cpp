@@ -602,8 +602,9 @@ PetscErrorCode Assembler::externalForce(Vec F) {
   PetscCall(VecDuplicate(F, &X0));
   PetscCall(VecDuplicate(F, &R1));
   PetscCall(VecSet(X0, 0.0));
-  PetscCall(staticResidual(X0, 0.0, F));   // f_int(0)
-  PetscCall(staticResidual(X0, 1.0, R1));  // f_int(0) - f_ext
+  // supported rows included (Reaction rows): the energy balance needs the loads' power on moving supports
+  PetscCall(assembleResidual(X0, nullptr, 0.0, F, SupportRows::Reaction));   // f_int(0)
+  PetscCall(assembleResidual(X0, nullptr, 1.0, R1, SupportRows::Reaction));  // f_int(0) - f_ext
   PetscCall(VecAXPY(F, -1.0, R1));
   PetscCall(VecDestroy(&X0));
   PetscCall(VecDestroy(&R1));

@@ -332,18 +332,18 @@ PetscErrorCode Dynamics::formJacobian(TS, PetscReal, Vec U, Vec V, Vec, PetscRea
 PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support, PetscReal* load) {
   PetscFunctionBeginUser;
   *damping = *support = *load = 0.0;
+  // All three powers include the supported rows, as the support force does (zero v there unless the
+  // support moves), so the balance E = T + U + P + W_d - W_s - W_t closes on moving supports too.
   if (_asm.hasTimedLoads() || _asm.model().hasLoadFunction()) {  // v . f(t) of the time-dependent loads
     PetscCall(VecSet(_w1, 0.0));
     PetscCall(_asm.addTimedLoads(t, _w1, 1.0));
     if (_asm.model().hasLoadFunction()) PetscCall(VecAXPY(_w1, _asm.model().loadFactor(t), _fext));
-    PetscCall(_asm.zeroSupportedRows(_w1));
     PetscCall(VecDot(_w1, V, load));
   }
   if (_damped) {
-    PetscCall(_asm.residual(X, V, t, _w1));
-    PetscCall(_asm.residual(X, nullptr, t, _w2));
+    PetscCall(_asm.residual(X, V, t, _w1, assembly::SupportRows::Reaction));
+    PetscCall(_asm.residual(X, nullptr, t, _w2, assembly::SupportRows::Reaction));
     PetscCall(VecAXPY(_w1, -1.0, _w2));
-    PetscCall(_asm.zeroSupportedRows(_w1));
     PetscCall(VecDot(_w1, V, damping));
   }
   if (_moving) {

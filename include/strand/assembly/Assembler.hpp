@@ -65,8 +65,9 @@ public:
   // D = df_int/dV (Kelvin-Voigt), M the consistent mass; unit rows and columns at supports. With
   // D non-null (and V given), D alone is assembled there too (zero rows and columns at supports).
   PetscErrorCode dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D = nullptr);
-  // The constant applied loads f_ext (gravity, distributed and nodal forces) at the reference state;
-  // nodal moments are evaluated there too (they follow the slope, so they are not constant).
+  // The constant applied loads f_ext (gravity, distributed and nodal forces) at the reference state,
+  // on every row, supported ones included; nodal moments are evaluated there too (they follow the
+  // slope, so they are not constant).
   PetscErrorCode externalForce(Vec F);
   // Time-dependent nodal forces (Model::timedLoads): R += scale * sum_k g_k(t) f_k on owned rows
   // (residual() includes them; the energy monitor uses this for their power).
