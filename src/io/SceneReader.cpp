@@ -698,8 +698,8 @@ private:
       }
     if (model::isFirstOrder(d.integrator) && !scene_.joints.empty())
       integrator.fail(d.integrator == model::Integrator::Bdf
-                          ? "BDF with joints (the stabilized index-2 form) is not implemented yet; use generalized_alpha "
-                            "with rho_inf <= 0.9 for scenes with joints"
+                          ? "bdf integrates scenes without joints (no stabilized index-2 form in this version); use "
+                            "generalized_alpha with rho_inf <= 0.9 for scenes with joints"
                           : "explicit integrators (rk4, abm4) take problems without joints (no Lagrange multipliers); "
                             "use generalized_alpha with rho_inf <= 0.9 for scenes with joints");
     d.dt = requirePositive(f.child("dt"));

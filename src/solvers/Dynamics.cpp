@@ -384,7 +384,6 @@ PetscErrorCode Dynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X, void*
 
 PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) {
   PetscFunctionBeginUser;
-  Dynamics* self = this;
   DynamicsStep s;
   s.step = static_cast<int>(step);
   s.time = t;
@@ -399,24 +398,24 @@ PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) 
     PetscCall(TSGetStepRejections(_ts, &rejected));
     s.rejectedSteps = static_cast<int>(rejected);
   }
-  PetscCall(self->energies(X, V, &s));
-  if (self->_constrained) PetscCall(self->_asm.constraintViolation(X, V, &s.constraintPosition, &s.constraintVelocity));
+  PetscCall(energies(X, V, &s));
+  if (_constrained) PetscCall(_asm.constraintViolation(X, V, &s.constraintPosition, &s.constraintVelocity));
   PetscReal pd, ps, pl;
-  PetscCall(self->powers(t, X, V, &pd, &ps, &pl));
-  const double half = 0.5 * (t - self->_last.time);
-  s.dissipated = step > 0 ? self->_last.dissipated + half * (pd + self->_lastDampingPower) : 0.0;
-  s.supportWork = step > 0 ? self->_last.supportWork + half * (ps + self->_lastSupportPower) : 0.0;
-  s.loadWork = step > 0 ? self->_last.loadWork + half * (pl + self->_lastLoadPower) : 0.0;
-  self->_last = s;
-  self->_lastDampingPower = pd;
-  self->_lastSupportPower = ps;
-  self->_lastLoadPower = pl;
+  PetscCall(powers(t, X, V, &pd, &ps, &pl));
+  const double half = 0.5 * (t - _last.time);
+  s.dissipated = step > 0 ? _last.dissipated + half * (pd + _lastDampingPower) : 0.0;
+  s.supportWork = step > 0 ? _last.supportWork + half * (ps + _lastSupportPower) : 0.0;
+  s.loadWork = step > 0 ? _last.loadWork + half * (pl + _lastLoadPower) : 0.0;
+  _last = s;
+  _lastDampingPower = pd;
+  _lastSupportPower = ps;
+  _lastLoadPower = pl;
   // Blow-up guard: the schemes only remove energy (numerical dissipation), and a stable run's
   // balance error is O(h^2) small; energy *created* beyond half of the largest T + |U| + |P| + |W|
   // seen means the discrete solution has left the exact one for good (measured on the 20-link chain at
   // rho_inf = 1: E - E0 went from -2e-3 J to 1e11 J = T within 50 steps, without a Newton failure).
-  if (step == 0) self->_e0 = s.energy();
-  self->_energyScale = std::max(self->_energyScale, s.kinetic + std::fabs(s.strain) + std::fabs(s.potential) +
+  if (step == 0) _e0 = s.energy();
+  _energyScale = std::max(_energyScale, s.kinetic + std::fabs(s.strain) + std::fabs(s.potential) +
                                                         std::fabs(s.dissipated) + std::fabs(s.supportWork) +
                                                         std::fabs(s.loadWork));
   // It must persist for kBlowUpSteps steps (or be NaN/inf): in the first steps from rest every
@@ -424,16 +423,16 @@ PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) 
   // spin-up, step 1: 1.4e-31 J "created", half the energy held then).
   // Below an absolute floor, 1e-12 of the cables' unit-strain energy sum EA L, energies are noise
   // (the spin-up's first 6 steps at h = 1.5e-5 s: 1e-31 J).
-  const double created = s.energy() - self->_e0;
-  if (step > 0 && !(created <= std::max(0.5 * self->_energyScale, self->_energyFloor))) {
-    if (self->_overSteps++ == 0) self->_blowUpAt = s;  // the first step of the streak
-    if (self->_overSteps >= kBlowUpSteps || !std::isfinite(created)) self->_blowUp = std::isfinite(created) ? created : 1.0;
+  const double created = s.energy() - _e0;
+  if (step > 0 && !(created <= std::max(0.5 * _energyScale, _energyFloor))) {
+    if (_overSteps++ == 0) _blowUpAt = s;  // the first step of the streak
+    if (_overSteps >= kBlowUpSteps || !std::isfinite(created)) _blowUp = std::isfinite(created) ? created : 1.0;
   } else {
-    self->_overSteps = 0;
+    _overSteps = 0;
   }
-  s.suspect = self->_overSteps > 0 || !std::isfinite(created);  // e.g. no checkpoint of this state
-  self->_last.suspect = s.suspect;
-  if (self->_onStep && *self->_onStep) PetscCall((*self->_onStep)(s, X, V));
+  s.suspect = _overSteps > 0 || !std::isfinite(created);  // e.g. no checkpoint of this state
+  _last.suspect = s.suspect;
+  if (_onStep && *_onStep) PetscCall((*_onStep)(s, X, V));
   PetscFunctionReturn(0);
 }
 

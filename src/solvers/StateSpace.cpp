@@ -11,6 +11,7 @@ StateSpace::StateSpace(assembly::Assembler& assembler, Mat M, Vec supported, KSP
   PetscCallAbort(comm, VecGetLocalSize(supported, &_n));
   PetscCallAbort(comm, VecGetSize(supported, &_N));
   for (Vec* v : {&_free, &_up, &_vp, &_ap, &_w1, &_w2}) PetscCallAbort(comm, VecDuplicate(supported, v));
+  for (Vec v : {_up, _vp, _ap}) PetscCallAbort(comm, VecSet(v, 0.0));
   PetscCallAbort(comm, VecSet(_free, 1.0));
   PetscCallAbort(comm, VecAXPY(_free, -1.0, supported));
   for (Halves* h : {&_a, &_b, &_c, &_view}) {
@@ -96,6 +97,7 @@ PetscErrorCode StateSpace::releaseView(Vec Y) {
 
 PetscErrorCode StateSpace::prescribedMotion(PetscReal t) {
   PetscFunctionBeginUser;
+  if (!_asm.model().hasPrescribedMotion()) PetscFunctionReturn(0);  // _up, _vp, _ap stay zero
   for (Vec v : {_up, _vp, _ap}) PetscCall(VecSet(v, 0.0));
   PetscCall(_asm.prescribedMotion(t, _up, _vp, _ap));
   PetscFunctionReturn(0);

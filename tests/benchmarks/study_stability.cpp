@@ -9,7 +9,6 @@
 // (generalized-alpha rho 0.9, Newmark, BDF2): checked at h = 100 / omega_max and 1e-2 s, where they
 // must run. One JSON line per (scheme, model).
 #include <petscsys.h>
-#include <slepceps.h>
 
 #include <cmath>
 #include <cstdio>
@@ -21,46 +20,6 @@ using namespace strand;
 using namespace strand::testing;
 
 namespace {
-
-double highestFrequency(const model::SceneDescription& sc) {
-  MPI_Comm comm = PETSC_COMM_WORLD;
-  solvers::Problem p(comm, sc);
-  Mat K, M;
-  Vec X, supported;
-  IS free;
-  PetscCallAbort(comm, p.dofs().createMatrix(&K, nullptr));
-  PetscCallAbort(comm, p.dofs().createMatrix(&M, nullptr));
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &supported));
-  PetscCallAbort(comm, p.assembler().initialState(X));
-  PetscCallAbort(comm, p.assembler().staticJacobian(X, 0.0, K));
-  PetscCallAbort(comm, p.assembler().massMatrix(M));
-  PetscCallAbort(comm, p.assembler().freeDofs(&free));
-  PetscCallAbort(comm, VecSet(supported, 1.0));
-  PetscCallAbort(comm, VecISSet(supported, free, 0.0));
-  PetscCallAbort(comm, MatDiagonalSet(M, supported, ADD_VALUES));
-  EPS eps;
-  ST st;
-  KSP ksp;
-  PetscCallAbort(comm, EPSCreate(comm, &eps));
-  PetscCallAbort(comm, EPSSetOperators(eps, K, M));
-  PetscCallAbort(comm, EPSSetProblemType(eps, EPS_GHEP));
-  PetscCallAbort(comm, EPSSetWhichEigenpairs(eps, EPS_LARGEST_MAGNITUDE));
-  PetscCallAbort(comm, EPSSetTolerances(eps, 1e-10, 1000));
-  PetscCallAbort(comm, EPSGetST(eps, &st));
-  PetscCallAbort(comm, STGetKSP(st, &ksp));
-  PetscCallAbort(comm, solvers::setDirectSolverDefaults(ksp, comm, false));
-  PetscCallAbort(comm, EPSSolve(eps));
-  PetscScalar lambda = 0.0;
-  PetscCallAbort(comm, EPSGetEigenvalue(eps, 0, &lambda, nullptr));
-  EPSDestroy(&eps);
-  MatDestroy(&K);
-  MatDestroy(&M);
-  VecDestroy(&X);
-  VecDestroy(&supported);
-  ISDestroy(&free);
-  return std::sqrt(PetscRealPart(lambda));
-}
 
 bool runs(const model::SceneDescription& sc, model::DynamicsDesc d) {
   const PendulumRun r = runPendulum(sc, d, true);

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <slepceps.h>
+
 #include "strand/solvers/Dynamics.hpp"
 #include "support/Scenes.hpp"
 
@@ -74,6 +76,51 @@ inline PendulumRun runPendulum(const model::SceneDescription& sc, const model::D
   VecDestroy(&X);
   VecDestroy(&V);
   return out;
+}
+
+// omega_max of K x = omega^2 M x at the reference state (SLEPc, largest magnitude); unit rows of the
+// supported DOFs on both sides give them the eigenvalue 1.
+inline double highestFrequency(const model::SceneDescription& sc) {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  solvers::Problem p(comm, sc);
+  Mat K, M;
+  Vec X, supported;
+  IS free;
+  PetscCallAbort(comm, p.dofs().createMatrix(&K, nullptr));
+  PetscCallAbort(comm, p.dofs().createMatrix(&M, nullptr));
+  PetscCallAbort(comm, p.dofs().createVector(&X));
+  PetscCallAbort(comm, VecDuplicate(X, &supported));
+  PetscCallAbort(comm, p.assembler().initialState(X));
+  PetscCallAbort(comm, p.assembler().staticJacobian(X, 0.0, K));
+  PetscCallAbort(comm, p.assembler().massMatrix(M));
+  PetscCallAbort(comm, p.assembler().freeDofs(&free));
+  PetscCallAbort(comm, VecSet(supported, 1.0));
+  PetscCallAbort(comm, VecISSet(supported, free, 0.0));
+  PetscCallAbort(comm, MatDiagonalSet(M, supported, ADD_VALUES));
+  EPS eps;
+  ST st;
+  KSP ksp;
+  PetscCallAbort(comm, EPSCreate(comm, &eps));
+  PetscCallAbort(comm, EPSSetOperators(eps, K, M));
+  PetscCallAbort(comm, EPSSetProblemType(eps, EPS_GHEP));
+  PetscCallAbort(comm, EPSSetWhichEigenpairs(eps, EPS_LARGEST_MAGNITUDE));
+  PetscCallAbort(comm, EPSSetTolerances(eps, 1e-10, 1000));
+  PetscCallAbort(comm, EPSGetST(eps, &st));
+  PetscCallAbort(comm, STGetKSP(st, &ksp));
+  PetscCallAbort(comm, solvers::setDirectSolverDefaults(ksp, comm, false));
+  PetscCallAbort(comm, EPSSolve(eps));
+  PetscInt nconv;
+  PetscCallAbort(comm, EPSGetConverged(eps, &nconv));
+  EXPECT_GE(nconv, 1);
+  PetscScalar lambda = 0.0;
+  if (nconv >= 1) PetscCallAbort(comm, EPSGetEigenvalue(eps, 0, &lambda, nullptr));
+  EPSDestroy(&eps);
+  MatDestroy(&K);
+  MatDestroy(&M);
+  VecDestroy(&X);
+  VecDestroy(&supported);
+  ISDestroy(&free);
+  return std::sqrt(PetscRealPart(lambda));
 }
 
 inline PendulumRun pendulum(const model::DynamicsDesc& d, double damping = 0.0, bool expectFailure = false) {

@@ -18,7 +18,6 @@
 //     step (AdamsBashforthMoulton.hpp): undamped it stops with that explanation; with the damping
 //     (real eigenvalues, stable for h |lambda| <= 1.28) the same model runs.
 #include <gtest/gtest.h>
-#include <slepceps.h>
 
 #include <cmath>
 #include <cstdio>
@@ -63,52 +62,6 @@ double distance(const Study& a, const Study& b) {
 const Study& rk4Reference() {
   static const Study s = halvings(scheme(model::Integrator::Rk4, 1.0, 0, 0), H_RK4, "rk4");
   return s;
-}
-
-// Largest omega of K x = omega^2 M x for the pendulum at rest (unit rows at the pinned DOFs on both
-// sides, eigenvalue 1).
-double highestFrequency() {
-  MPI_Comm comm = PETSC_COMM_WORLD;
-  solvers::Problem p(comm, flexiblePendulum());
-  Mat K, M;
-  Vec X, supported;
-  IS free;
-  PetscCallAbort(comm, p.dofs().createMatrix(&K, nullptr));
-  PetscCallAbort(comm, p.dofs().createMatrix(&M, nullptr));
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &supported));
-  PetscCallAbort(comm, p.assembler().initialState(X));
-  PetscCallAbort(comm, p.assembler().staticJacobian(X, 0.0, K));
-  PetscCallAbort(comm, p.assembler().massMatrix(M));
-  PetscCallAbort(comm, p.assembler().freeDofs(&free));
-  PetscCallAbort(comm, VecSet(supported, 1.0));
-  PetscCallAbort(comm, VecISSet(supported, free, 0.0));
-  PetscCallAbort(comm, MatDiagonalSet(M, supported, ADD_VALUES));
-  EPS eps;
-  ST st;
-  KSP ksp;
-  PetscCallAbort(comm, EPSCreate(comm, &eps));
-  PetscCallAbort(comm, EPSSetOperators(eps, K, M));
-  PetscCallAbort(comm, EPSSetProblemType(eps, EPS_GHEP));
-  PetscCallAbort(comm, EPSSetWhichEigenpairs(eps, EPS_LARGEST_MAGNITUDE));
-  PetscCallAbort(comm, EPSSetDimensions(eps, 1, PETSC_DEFAULT, PETSC_DEFAULT));
-  PetscCallAbort(comm, EPSSetTolerances(eps, 1e-10, 1000));
-  PetscCallAbort(comm, EPSGetST(eps, &st));
-  PetscCallAbort(comm, STGetKSP(st, &ksp));
-  PetscCallAbort(comm, solvers::setDirectSolverDefaults(ksp, comm, false));
-  PetscCallAbort(comm, EPSSolve(eps));
-  PetscInt nconv;
-  PetscCallAbort(comm, EPSGetConverged(eps, &nconv));
-  EXPECT_GE(nconv, 1);
-  PetscScalar lambda = 0.0;
-  if (nconv >= 1) PetscCallAbort(comm, EPSGetEigenvalue(eps, 0, &lambda, nullptr));
-  EPSDestroy(&eps);
-  MatDestroy(&K);
-  MatDestroy(&M);
-  VecDestroy(&X);
-  VecDestroy(&supported);
-  ISDestroy(&free);
-  return std::sqrt(PetscRealPart(lambda));
 }
 
 }  // namespace
@@ -162,7 +115,7 @@ TEST(Integrators, AdaptiveBdfErrorFallsWithTheTolerance) {
 }
 
 TEST(Integrators, ExplicitSchemesStopWithAnExplanationWhereTheyAreUnstable) {
-  const double omega = highestFrequency();
+  const double omega = highestFrequency(flexiblePendulum());
   const double limit = 2.0 * std::sqrt(2.0) / omega;
   std::printf("omega_max = %.6e rad/s (SLEPc); RK4 limit 2 sqrt(2) / omega_max = %.4e s\n", omega, limit);
   const PendulumRun below = pendulum(scheme(model::Integrator::Rk4, 1.0, 0.95 * limit, 0.1));
