@@ -21,6 +21,9 @@ int runSweepScene(const char* scenePath);
 // `strand bench work-precision SCENE` (BenchCommand.cpp).
 int runWorkPrecision(const char* scenePath);
 
+// `strand run SCENE` for a hub_beam scene (HubBeamCommand.cpp), output to `out`.
+int runHubBeam(MPI_Comm comm, const model::SceneDescription& scene, const std::string& out);
+
 extern const char* kVersion;
 
 // Runs `body` on every rank and turns exceptions into exit codes and one message (RunCommand.cpp):

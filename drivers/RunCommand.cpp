@@ -325,6 +325,12 @@ int runScene(const char* scenePath, RunMode mode) {
   MPI_Comm comm = PETSC_COMM_WORLD;
   return guarded(comm, [&] {
     const model::SceneDescription scene = io::readScene(scenePath);
+    if (scene.hubBeam.present) {
+      if (mode == RunMode::ForceModes)
+        throw InputError(scene.hubBeam.mark.where() + ": 'strand modes' needs a body scene; a hub_beam scene runs "
+                         "its dynamics with 'strand run'");
+      return runHubBeam(comm, scene, outputPath(scene));
+    }
     SceneRun run(comm, scene, mode);
     return run.execute();
   });

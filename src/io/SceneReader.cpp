@@ -359,6 +359,39 @@ const Choice<model::SweepParameter> kSweepParameters[] = {{"gamma", model::Sweep
 
 const Choice<bool> kStressFree[] = {{"straight", false}, {"initial", true}};
 
+// hub_beam (seed 001): coupling and deformation methods; each method allows only its own keys under
+// hub_beam.discretization (plus `method`).
+const Choice<model::HubBeamCoupling> kHubBeamCouplings[] = {{"first_order", model::HubBeamCoupling::FirstOrder},
+                                                            {"zero_order", model::HubBeamCoupling::ZeroOrder}};
+
+const Choice<bool> kRpimSupports[] = {{"cell", true}, {"point", false}};
+
+struct HubBeamMethodInfo {
+  const char* name;
+  model::HubBeamMethod value;
+  std::vector<std::string> keys;
+};
+const HubBeamMethodInfo kHubBeamMethods[] = {
+    {"fem", model::HubBeamMethod::Fem, {"elements"}},
+    {"modes", model::HubBeamMethod::AssumedModes, {"axial_modes", "bending_modes"}},
+    {"rpim", model::HubBeamMethod::Rpim, {"nodes", "alpha_c", "q", "alpha_s", "gauss_points", "support"}},
+};
+
+// hub_beam.beam: all required, positive.
+struct HubBeamKey {
+  const char* name;
+  double model::HubBeamDesc::*field;
+};
+const HubBeamKey kHubBeamBeamKeys[] = {{"length", &model::HubBeamDesc::length},
+                                       {"E", &model::HubBeamDesc::E},
+                                       {"A", &model::HubBeamDesc::A},
+                                       {"I", &model::HubBeamDesc::I},
+                                       {"rho", &model::HubBeamDesc::rho}};
+
+// Top-level keys of the cable scenes that a hub_beam scene has no use for.
+const char* const kNotInHubBeamScenes[] = {"bodies", "rigid_bodies", "joints", "supports", "junctions", "loads",
+                                           "rotation", "sweep", "modes", "static", "discretization"};
+
 struct ElementTypeInfo {
   const char* name;
   model::ElementType value;
@@ -615,8 +648,9 @@ public:
     const Field root(rootNode, "", ctx_.file, lineOf(rootNode, 1));
     if (!root.present()) root.fail("the scene is empty; expected a map of scene keys");
     root.expectMap({"analysis", "dimension", "discretization", "bodies", "rigid_bodies", "joints", "supports",
-                    "junctions", "loads", "static", "modes", "rotation", "sweep", "dynamics", "output"});
+                    "junctions", "loads", "static", "modes", "rotation", "sweep", "dynamics", "output", "hub_beam"});
     scene_.analysis = pick(root.child("analysis"), "analysis", kAnalyses).value;
+    if (const Field f = root.child("hub_beam"); f.present()) return parseHubBeamScene(root, f);
     scene_.dimension = ctx_.dim = requireIntInRange(root.child("dimension"), 2, 3);
     if (const Field f = root.child("discretization"); f.present()) readDiscretization(f);
     const Field rigid = root.child("rigid_bodies");
@@ -652,6 +686,106 @@ public:
   }
 
 private:
+  // A hub_beam scene (seed 001): the hub-beam model alone, in 2D, in time. Only `analysis`,
+  // `dimension` (2 if given), `dynamics` (required) and `output` go with it.
+  model::SceneDescription parseHubBeamScene(const Field& root, const Field& hubBeam) {
+    for (const char* key : kNotInHubBeamScenes)
+      if (const Field f = root.child(key); f.present())
+        f.fail("a hub_beam scene has no '" + std::string(key) + "'; the beam is described under hub_beam");
+    const Field analysis = root.child("analysis");
+    if (scene_.analysis != model::Analysis::Dynamic)
+      analysis.fail("a hub_beam scene is integrated in time: use analysis: dynamic (got '" + analysis.text() + "')");
+    if (const Field dim = root.child("dimension"); dim.present()) {
+      const long d = dim.integer();
+      if (d != 2)
+        dim.fail("a hub_beam turns in its plane: dimension must be 2 or left out (got " + std::to_string(d) + ")");
+    }
+    scene_.dimension = ctx_.dim = 2;
+    readHubBeam(hubBeam);
+    const Field dynamics = root.child("dynamics");
+    if (!dynamics.present()) analysis.fail("analysis 'dynamic' needs a 'dynamics' section (dt, t_end)");
+    readDynamics(dynamics);  // no joints: every integrator is allowed
+    if (const Field f = root.child("output"); f.present()) readOutput(f);
+    return scene_;
+  }
+
+  void readHubBeam(const Field& f) {
+    f.expectMap({"beam", "hub", "coupling", "discretization"});
+    model::HubBeamDesc& h = scene_.hubBeam;
+    h.present = true;
+    h.mark = f.mark();
+
+    const Field beam = f.child("beam");
+    std::vector<std::string> beamKeys;
+    for (const HubBeamKey& k : kHubBeamBeamKeys) beamKeys.emplace_back(k.name);
+    beam.expectMap(beamKeys);
+    for (const HubBeamKey& k : kHubBeamBeamKeys) h.*k.field = requirePositive(beam.child(k.name));
+
+    readHubBeamHub(f.child("hub"), h);
+    if (const Field c = f.child("coupling"); c.present()) h.coupling = pick(c, "coupling", kHubBeamCouplings).value;
+    if (const Field d = f.child("discretization"); d.present()) readHubBeamDiscretization(d, h);
+  }
+
+  // hub: radius, and either angle (driven) or inertia with torque and rate (free).
+  static void readHubBeamHub(const Field& f, model::HubBeamDesc& h) {
+    f.expectMap({"radius", "angle", "inertia", "torque", "rate"});
+    if (const Field r = f.child("radius"); r.present()) h.hubRadius = requireNonNegative(r);
+    const Field angle = f.child("angle"), inertia = f.child("inertia");
+    if (angle.present() == inertia.present())
+      f.fail("give exactly one of 'angle' (a driven hub: its angle in time) and 'inertia' (a free hub) [kg m^2]");
+    h.driven = angle.present();
+    if (h.driven) {
+      for (const char* key : {"torque", "rate"})
+        if (const Field k = f.child(key); k.present())
+          k.fail("only for a free hub (with 'inertia'); a driven hub's motion is prescribed by 'angle'");
+      h.angle = readTimeFunction(angle);
+      return;
+    }
+    h.hubInertia = requirePositive(inertia);
+    if (const Field t = f.child("torque"); t.present()) h.torque = readTimeFunction(t);
+    if (const Field r = f.child("rate"); r.present()) h.initialRate = r.number();
+  }
+
+  // discretization: method (default fem) and the keys of that method only.
+  static void readHubBeamDiscretization(const Field& f, model::HubBeamDesc& h) {
+    std::vector<std::string> keys{"method"};
+    for (const HubBeamMethodInfo& m : kHubBeamMethods) keys.insert(keys.end(), m.keys.begin(), m.keys.end());
+    f.expectMap(keys);
+    const Field method = f.child("method");
+    const HubBeamMethodInfo& m = method.present() ? pick(method, "method", kHubBeamMethods) : kHubBeamMethods[0];
+    h.method = m.value;
+    for (const HubBeamMethodInfo& other : kHubBeamMethods)
+      if (other.value != m.value)
+        for (const std::string& key : other.keys)
+          if (const Field k = f.child(key); k.present())
+            k.fail("'" + key + "' is a key of method " + other.name + " (the method here is " + m.name + ")");
+    switch (h.method) {
+      case model::HubBeamMethod::Fem:
+        if (const Field e = f.child("elements"); e.present()) h.elements = requireIntAtLeast(e, 1);
+        break;
+      case model::HubBeamMethod::AssumedModes:
+        if (const Field a = f.child("axial_modes"); a.present()) h.axialModes = requireIntInRange(a, 1, 10);
+        if (const Field b = f.child("bending_modes"); b.present()) h.bendingModes = requireIntInRange(b, 1, 10);
+        break;
+      case model::HubBeamMethod::Rpim:
+        if (const Field n = f.child("nodes"); n.present()) h.nodes = requireIntAtLeast(n, 3);
+        if (const Field a = f.child("alpha_c"); a.present()) h.alphaC = requirePositive(a);
+        if (const Field q = f.child("q"); q.present()) {
+          h.q = q.number();
+          if (h.q >= 0.0 && h.q == std::floor(h.q))
+            q.fail("must not be 0 or a positive integer: the multiquadric (r^2 + (alpha_c d_c)^2)^q is then a "
+                   "polynomial and the moment matrix is singular (got " + fmt(h.q) + ")");
+        }
+        if (const Field a = f.child("alpha_s"); a.present()) {
+          h.alphaS = requirePositive(a);
+          if (h.alphaS < 1.0) a.fail("must be at least 1, so that every point's support holds 2 nodes (got " + fmt(h.alphaS) + ")");
+        }
+        if (const Field g = f.child("gauss_points"); g.present()) h.gaussPoints = requireIntInRange(g, 1, 10);
+        if (const Field s = f.child("support"); s.present()) h.cellSupport = pick(s, "support", kRpimSupports).value;
+        break;
+    }
+  }
+
   void readModes(const Field& f) {
     f.expectMap({"count", "coriolis", "method", "projection_modes", "warm_start"});
     if (const Field w = f.child("warm_start"); w.present()) scene_.modes.warmStart = w.boolean();

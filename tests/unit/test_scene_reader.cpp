@@ -889,3 +889,213 @@ TEST(SceneReader, RigidBodiesAndJoints) {
                         "position: [0.5, 0, 0]}]\ndynamics: {dt: 1e-3, t_end: 1}\n",
                         3, "rigid_bodies[0]", "rigid bodies are planar in this version"));
 }
+
+// ------------------------------------------------------------------------------------------------
+// hub_beam (seed 001): a scene of its own
+
+namespace {
+
+// A driven hub with an FEM beam; the hub_beam tests change one thing in it. Line numbers matter.
+const std::string kHubBeam =                                           // line
+    "analysis: dynamic\n"                                              // 1
+    "hub_beam:\n"                                                      // 2
+    "  beam: {length: 10, E: 70e9, A: 4e-4, I: 2e-7, rho: 3000}\n"     // 3
+    "  hub:\n"                                                         // 4
+    "    radius: 0.5\n"                                                // 5
+    "    angle: {function: spin_up, omega: 4, duration: 15}\n"         // 6
+    "  coupling: zero_order\n"                                         // 7
+    "  discretization: {method: fem, elements: 8}\n"                   // 8
+    "dynamics: {integrator: rk4, dt: 1e-3, t_end: 20}\n";              // 9
+
+// kHubBeam with its discretization line replaced by `discretization` (still line 8).
+std::string hubBeamWith(const std::string& discretization) {
+  return edit(kHubBeam, "  discretization: {method: fem, elements: 8}\n", "  discretization: " + discretization + "\n");
+}
+
+}  // namespace
+
+// requirement (issue 5): a driven hub with an FEM beam is read with every value, in 2D, without
+// bodies or dimension; the explicit integrators are allowed (a hub_beam has no joints).
+TEST(SceneReader, HubBeamDrivenFem) {
+  const model::SceneDescription s = parseScene(kHubBeam, "hub.yaml");
+  const model::HubBeamDesc& h = s.hubBeam;
+  EXPECT_TRUE(h.present);
+  EXPECT_EQ(h.mark.file, "hub.yaml");
+  EXPECT_EQ(h.mark.line, 2);
+  EXPECT_EQ(h.mark.key, "hub_beam");
+  EXPECT_EQ(s.dimension, 2);
+  EXPECT_EQ(s.analysis, model::Analysis::Dynamic);
+  EXPECT_TRUE(s.bodies.empty());
+  EXPECT_TRUE(s.supports.empty());
+  EXPECT_DOUBLE_EQ(h.length, 10.0);
+  EXPECT_DOUBLE_EQ(h.E, 70e9);
+  EXPECT_DOUBLE_EQ(h.A, 4e-4);
+  EXPECT_DOUBLE_EQ(h.I, 2e-7);
+  EXPECT_DOUBLE_EQ(h.rho, 3000.0);
+  EXPECT_DOUBLE_EQ(h.hubRadius, 0.5);
+  EXPECT_TRUE(h.driven);
+  EXPECT_EQ(h.angle.kind, model::TimeFunction::Kind::SpinUp);
+  EXPECT_DOUBLE_EQ(h.angle.omega, 4.0);
+  EXPECT_DOUBLE_EQ(h.angle.duration, 15.0);
+  EXPECT_EQ(h.coupling, model::HubBeamCoupling::ZeroOrder);
+  EXPECT_EQ(h.method, model::HubBeamMethod::Fem);
+  EXPECT_EQ(h.elements, 8);
+  EXPECT_EQ(s.dynamics.integrator, model::Integrator::Rk4);
+  EXPECT_DOUBLE_EQ(s.dynamics.tEnd, 20.0);
+  // defaults: first_order coupling, fem with 10 elements, hub radius 0; dimension: 2 may be given
+  const model::SceneDescription d = parseScene(
+      "analysis: dynamic\ndimension: 2\nhub_beam:\n  beam: {length: 1, E: 1, A: 1, I: 1, rho: 1}\n"
+      "  hub: {angle: 0.5}\ndynamics: {dt: 1e-3, t_end: 1}\n",
+      "defaults.yaml");
+  EXPECT_EQ(d.hubBeam.coupling, model::HubBeamCoupling::FirstOrder);
+  EXPECT_EQ(d.hubBeam.method, model::HubBeamMethod::Fem);
+  EXPECT_EQ(d.hubBeam.elements, 10);
+  EXPECT_DOUBLE_EQ(d.hubBeam.hubRadius, 0.0);
+  EXPECT_EQ(d.hubBeam.angle.kind, model::TimeFunction::Kind::Constant);
+  EXPECT_DOUBLE_EQ(d.hubBeam.angle.value, 0.5);
+  // every integrator
+  for (const char* integrator : {"generalized_alpha", "newmark", "hht", "bdf", "rk4", "abm4"})
+    EXPECT_NO_THROW(parseScene(edit(kHubBeam, "integrator: rk4", std::string("integrator: ") + integrator), "hub.yaml"))
+        << integrator;
+  // an ordinary scene has no hubBeam
+  EXPECT_FALSE(parseScene(kBase3d, "scene.yaml").hubBeam.present);
+}
+
+// requirement (issue 5): a free hub (inertia, torque, initial rate) with assumed modes.
+TEST(SceneReader, HubBeamFreeHubModes) {
+  const std::string yaml =
+      "analysis: dynamic\n"                                                    // 1
+      "dimension: 2\n"                                                         // 2
+      "hub_beam:\n"                                                            // 3
+      "  beam: {length: 8, E: 2e11, A: 1e-3, I: 1e-6, rho: 7800}\n"            // 4
+      "  hub:\n"                                                               // 5
+      "    inertia: 500\n"                                                     // 6
+      "    torque: {function: ramp, value: 100, start: 0, end: 1}\n"           // 7
+      "    rate: 0.5\n"                                                        // 8
+      "  discretization: {method: modes, axial_modes: 2, bending_modes: 4}\n"  // 9
+      "dynamics: {integrator: bdf, dt: 1e-3, t_end: 1}\n"                      // 10
+      "output: {file: hub.h5}\n";                                              // 11
+  const model::SceneDescription s = parseScene(yaml, "free.yaml");
+  const model::HubBeamDesc& h = s.hubBeam;
+  EXPECT_TRUE(h.present);
+  EXPECT_EQ(h.mark.line, 3);
+  EXPECT_FALSE(h.driven);
+  EXPECT_DOUBLE_EQ(h.hubInertia, 500.0);
+  EXPECT_EQ(h.torque.kind, model::TimeFunction::Kind::Ramp);
+  EXPECT_DOUBLE_EQ(h.torque.value, 100.0);
+  EXPECT_DOUBLE_EQ(h.torque.end, 1.0);
+  EXPECT_DOUBLE_EQ(h.initialRate, 0.5);
+  EXPECT_DOUBLE_EQ(h.hubRadius, 0.0);
+  EXPECT_EQ(h.coupling, model::HubBeamCoupling::FirstOrder);
+  EXPECT_EQ(h.method, model::HubBeamMethod::AssumedModes);
+  EXPECT_EQ(h.axialModes, 2);
+  EXPECT_EQ(h.bendingModes, 4);
+  EXPECT_DOUBLE_EQ(h.length, 8.0);
+  EXPECT_EQ(s.dimension, 2);
+  EXPECT_EQ(s.dynamics.integrator, model::Integrator::Bdf);
+  EXPECT_EQ(s.output.file, "hub.h5");
+  // torque and rate default to zero
+  const model::SceneDescription bare =
+      parseScene(edit(edit(yaml, "    torque: {function: ramp, value: 100, start: 0, end: 1}\n", ""), "    rate: 0.5\n", ""),
+                 "free.yaml");
+  EXPECT_EQ(bare.hubBeam.torque.kind, model::TimeFunction::Kind::Constant);
+  EXPECT_DOUBLE_EQ(bare.hubBeam.torque.value, 0.0);
+  EXPECT_DOUBLE_EQ(bare.hubBeam.initialRate, 0.0);
+  EXPECT_TRUE(failsWith(edit(yaml, "inertia: 500", "inertia: 0"), 6, "hub_beam.hub.inertia", "must be positive (got 0)"));
+  EXPECT_TRUE(failsWith(edit(yaml, "bending_modes: 4", "bending_modes: 11"), 9, "hub_beam.discretization.bending_modes",
+                        "must be 1..10 (got 11)"));
+  EXPECT_TRUE(failsWith(edit(yaml, "axial_modes: 2", "axial_modes: 0"), 9, "hub_beam.discretization.axial_modes",
+                        "must be 1..10 (got 0)"));
+}
+
+// requirement (issue 5): rpim reads all its keys; q must not make the multiquadric a polynomial.
+TEST(SceneReader, HubBeamRpim) {
+  const std::string rpim = hubBeamWith("{method: rpim, nodes: 15, alpha_c: 4, q: -0.5, alpha_s: 3, gauss_points: 6}");
+  const model::HubBeamDesc h = parseScene(rpim, "rpim.yaml").hubBeam;
+  EXPECT_EQ(h.method, model::HubBeamMethod::Rpim);
+  EXPECT_EQ(h.nodes, 15);
+  EXPECT_DOUBLE_EQ(h.alphaC, 4.0);
+  EXPECT_DOUBLE_EQ(h.q, -0.5);
+  EXPECT_DOUBLE_EQ(h.alphaS, 3.0);
+  EXPECT_EQ(h.gaussPoints, 6);
+  // defaults of rpim
+  const model::HubBeamDesc d = parseScene(hubBeamWith("{method: rpim}"), "rpim.yaml").hubBeam;
+  EXPECT_EQ(d.nodes, 11);
+  EXPECT_DOUBLE_EQ(d.alphaC, 3.0);
+  EXPECT_DOUBLE_EQ(d.q, 1.03);
+  EXPECT_DOUBLE_EQ(d.alphaS, 2.5);
+  EXPECT_EQ(d.gaussPoints, 4);
+  EXPECT_NO_THROW(parseScene(edit(rpim, "q: -0.5", "q: 1.5"), "rpim.yaml"));
+  EXPECT_NO_THROW(parseScene(edit(rpim, "q: -0.5", "q: -1"), "rpim.yaml"));
+  EXPECT_TRUE(failsWith(edit(rpim, "q: -0.5", "q: 1"), 8, "hub_beam.discretization.q",
+                        "must not be 0 or a positive integer: the multiquadric (r^2 + (alpha_c d_c)^2)^q is then a "
+                        "polynomial and the moment matrix is singular (got 1)"));
+  EXPECT_TRUE(failsWith(edit(rpim, "q: -0.5", "q: 0"), 8, "hub_beam.discretization.q", "must not be 0"));
+  EXPECT_TRUE(failsWith(edit(rpim, "q: -0.5", "q: 2.0"), 8, "hub_beam.discretization.q", "(got 2)"));
+  EXPECT_TRUE(failsWith(edit(rpim, "nodes: 15", "nodes: 2"), 8, "hub_beam.discretization.nodes", "must be at least 3 (got 2)"));
+  EXPECT_TRUE(failsWith(edit(rpim, "alpha_c: 4", "alpha_c: 0"), 8, "hub_beam.discretization.alpha_c", "must be positive"));
+  EXPECT_TRUE(failsWith(edit(rpim, "alpha_s: 3", "alpha_s: -1"), 8, "hub_beam.discretization.alpha_s", "must be positive"));
+  EXPECT_TRUE(failsWith(edit(rpim, "gauss_points: 6", "gauss_points: 11"), 8, "hub_beam.discretization.gauss_points",
+                        "must be 1..10 (got 11)"));
+  EXPECT_TRUE(failsWith(edit(rpim, "nodes: 15", "nodes: 15, elements: 4"), 8, "hub_beam.discretization.elements",
+                        "'elements' is a key of method fem (the method here is rpim)"));
+}
+
+// requirement (issue 5): every wrong hub_beam names its line and key.
+TEST(SceneReader, HubBeamErrors) {
+  // beam
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "E: 70e9, ", ""), 3, "hub_beam.beam.E", "missing required value"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "rho: 3000", "rho: -1"), 3, "hub_beam.beam.rho", "must be positive (got -1)"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "rho: 3000", "rho: 3000, nu: 0.3"), 3, "hub_beam.beam.nu",
+                        "unknown key; allowed: length, E, A, I, rho"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "  beam: {length: 10, E: 70e9, A: 4e-4, I: 2e-7, rho: 3000}\n", ""), 2,
+                        "hub_beam.beam", "missing required value"));
+  // hub: exactly one of angle and inertia; torque and rate only for a free hub
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "    radius: 0.5\n", "    radius: 0.5\n    inertia: 500\n"), 4, "hub_beam.hub",
+                        "give exactly one of 'angle' (a driven hub: its angle in time) and 'inertia' (a free hub)"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "    angle: {function: spin_up, omega: 4, duration: 15}\n", ""), 4, "hub_beam.hub",
+                        "give exactly one of 'angle'"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "    radius: 0.5\n", "    radius: 0.5\n    torque: 5\n"), 6, "hub_beam.hub.torque",
+                        "only for a free hub (with 'inertia'); a driven hub's motion is prescribed by 'angle'"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "    radius: 0.5\n", "    radius: 0.5\n    rate: 1\n"), 6, "hub_beam.hub.rate",
+                        "a driven hub's motion is prescribed"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "radius: 0.5", "radius: -0.5"), 5, "hub_beam.hub.radius", "must not be negative"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "function: spin_up", "function: spin"), 6, "hub_beam.hub.angle.function",
+                        "unknown time function 'spin'"));
+  // coupling, method and the keys of another method
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "zero_order", "second_order"), 7, "hub_beam.coupling",
+                        "unknown coupling 'second_order'; allowed: first_order, zero_order"));
+  EXPECT_TRUE(failsWith(hubBeamWith("{method: galerkin}"), 8, "hub_beam.discretization.method",
+                        "unknown method 'galerkin'; allowed: fem, modes, rpim"));
+  EXPECT_TRUE(failsWith(hubBeamWith("{method: fem, elements: 8, nodes: 11}"), 8, "hub_beam.discretization.nodes",
+                        "'nodes' is a key of method rpim (the method here is fem)"));
+  EXPECT_TRUE(failsWith(hubBeamWith("{alpha_c: 3}"), 8, "hub_beam.discretization.alpha_c",
+                        "'alpha_c' is a key of method rpim (the method here is fem)"));
+  EXPECT_TRUE(failsWith(hubBeamWith("{method: modes, elements: 8}"), 8, "hub_beam.discretization.elements",
+                        "'elements' is a key of method fem (the method here is modes)"));
+  EXPECT_TRUE(failsWith(hubBeamWith("{elements: 0}"), 8, "hub_beam.discretization.elements", "must be at least 1 (got 0)"));
+  EXPECT_TRUE(failsWith(hubBeamWith("{method: fem, points: 3}"), 8, "hub_beam.discretization.points",
+                        "unknown key; allowed: method, elements, axial_modes, bending_modes, nodes, alpha_c, q, alpha_s, "
+                        "gauss_points"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "  coupling: zero_order\n", "  coupling: zero_order\n  damping: 1\n"), 8,
+                        "hub_beam.damping", "unknown key; allowed: beam, hub, coupling, discretization"));
+  // the rest of the scene: no cable-scene keys, analysis dynamic with dynamics, dimension 2 if given
+  EXPECT_TRUE(failsWith(kHubBeam + "bodies: []\n", 10, "bodies",
+                        "a hub_beam scene has no 'bodies'; the beam is described under hub_beam"));
+  EXPECT_TRUE(failsWith(kHubBeam + "supports: []\n", 10, "supports", "a hub_beam scene has no 'supports'"));
+  EXPECT_TRUE(failsWith(kHubBeam + "loads: {gravity: [0, -9.81]}\n", 10, "loads", "a hub_beam scene has no 'loads'"));
+  EXPECT_TRUE(failsWith(kHubBeam + "discretization: {gauss_points: 4}\n", 10, "discretization",
+                        "a hub_beam scene has no 'discretization'"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "analysis: dynamic", "analysis: static"), 1, "analysis",
+                        "a hub_beam scene is integrated in time: use analysis: dynamic (got 'static')"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "analysis: dynamic", "analysis: modes"), 1, "analysis", "use analysis: dynamic"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "analysis: dynamic\n", "analysis: dynamic\ndimension: 3\n"), 2, "dimension",
+                        "a hub_beam turns in its plane: dimension must be 2 or left out (got 3)"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "dynamics: {integrator: rk4, dt: 1e-3, t_end: 20}\n", ""), 1, "analysis",
+                        "analysis 'dynamic' needs a 'dynamics' section"));
+  EXPECT_TRUE(failsWith(edit(kHubBeam, "dt: 1e-3", "dt: 0"), 9, "dynamics.dt", "must be positive"));
+  EXPECT_TRUE(failsWith("analysis: dynamic\nhub_beam: 5\ndynamics: {dt: 1e-3, t_end: 1}\n", 2, "hub_beam",
+                        "expected a map (got '5')"));
+  // ordinary scenes still need dimension and bodies
+  EXPECT_TRUE(failsWith("analysis: static\nbodies: []\n", 1, "dimension", "missing required value"));
+}

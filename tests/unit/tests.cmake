@@ -7,3 +7,4 @@ target_compile_definitions(unit_scene_reader PRIVATE STRAND_DOCS_DIR="${PROJECT_
 strand_test(NAME unit_time_function SOURCES unit/test_time_function.cpp LABELS unit)
 strand_test(NAME unit_constraint SOURCES unit/test_constraint.cpp LABELS unit)
 strand_test(NAME unit_state_space SOURCES unit/test_state_space.cpp LABELS unit NPROCS 1 2)
+strand_test(NAME unit_hub_beam SOURCES unit/test_hub_beam.cpp LABELS unit)

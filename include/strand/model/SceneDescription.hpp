@@ -229,6 +229,35 @@ struct OutputDesc {
   int samplesPerElement = 4; // centerline points per element in the output
 };
 
+// Floating-frame hub-beam (seed 001; issue 5; src/ffr): a rigid hub turning in its plane about a
+// fixed axis, an Euler-Bernoulli beam clamped to it at radius `hubRadius`, its axial and bending
+// deformation in the hub's frame discretized by assumed modes, FEM or RPIM. Small dense system;
+// scene key `hub_beam` (docs/scene-reference.md), alone in its scene.
+enum class HubBeamMethod { AssumedModes, Fem, Rpim };
+enum class HubBeamCoupling { FirstOrder, ZeroOrder };  // with / without the foreshortening w_c (Eq. 7)
+struct HubBeamDesc {
+  bool present = false;
+  // beam (SI): length, Young's modulus, area, second moment of area, density
+  double length = 0.0, E = 0.0, A = 0.0, I = 0.0, rho = 0.0;
+  // hub: radius a; driven (angle prescribed) or free (inertia J_oh about the axis, applied torque)
+  double hubRadius = 0.0;
+  bool driven = true;
+  TimeFunction angle;         // driven: theta(t)
+  double hubInertia = 0.0;    // free [kg m^2]
+  TimeFunction torque;        // free: tau(t) [N m] (default zero)
+  double initialRate = 0.0;   // free: theta'(0) [rad/s]
+  HubBeamCoupling coupling = HubBeamCoupling::FirstOrder;
+  HubBeamMethod method = HubBeamMethod::Fem;
+  int elements = 10;                      // fem: elements (linear axial, Hermite cubic bending)
+  int axialModes = 3, bendingModes = 3;   // modes: clamped-free axial and bending modes
+  int nodes = 11;                         // rpim: field nodes, evenly spaced
+  double alphaC = 3.0, q = 1.03;          // rpim: multiquadric (r^2 + (alpha_c d_c)^2)^q, Eq. 14
+  double alphaS = 2.5;                    // rpim: support size d_s = alpha_s d_c, Eq. 21
+  int gaussPoints = 4;                    // rpim: Gauss points per background cell, Eq. 52
+  bool cellSupport = true;                // rpim: one support per background cell (false: per point, seed 001)
+  SourceMark mark;
+};
+
 struct SceneDescription {
   std::string file;  // path of the scene file
   Analysis analysis = Analysis::Static;
@@ -246,6 +275,7 @@ struct SceneDescription {
   DynamicsDesc dynamics;
   DiscretizationDesc discretization;
   OutputDesc output;
+  HubBeamDesc hubBeam;
 };
 
 }  // namespace strand::model

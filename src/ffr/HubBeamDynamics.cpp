@@ -1,0 +1,365 @@
+#include "strand/ffr/HubBeamDynamics.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "strand/solvers/AdamsBashforthMoulton.hpp"
+#include "strand/solvers/GeneralizedAlpha.hpp"
+
+namespace strand::ffr {
+
+namespace {
+
+Eigen::VectorXd toEigen(Vec x, PetscInt offset, PetscInt n) {
+  const PetscScalar* a;
+  VecGetArrayRead(x, &a);
+  Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(a + offset, n);
+  VecRestoreArrayRead(x, &a);
+  return v;
+}
+
+void toVec(const Eigen::VectorXd& v, Vec x, PetscInt offset) {
+  PetscScalar* a;
+  VecGetArray(x, &a);
+  Eigen::Map<Eigen::VectorXd>(a + offset, v.size()) = v;
+  VecRestoreArray(x, &a);
+}
+
+// dense Mat (column major, leading dimension = rows) <- Eigen (column major)
+PetscErrorCode fillDense(Mat J, const Eigen::MatrixXd& m) {
+  PetscFunctionBeginUser;
+  PetscScalar* a;
+  PetscCall(MatDenseGetArrayWrite(J, &a));
+  Eigen::Map<Eigen::MatrixXd>(a, m.rows(), m.cols()) = m;
+  PetscCall(MatDenseRestoreArrayWrite(J, &a));
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+std::string fmt(double v, int precision = 4) {
+  std::ostringstream o;
+  o.precision(precision);
+  o << v;
+  return o.str();
+}
+
+PetscErrorCode postStep(TS ts);
+
+}  // namespace
+
+HubBeamDynamics::HubBeamDynamics(const HubBeam& model, const model::DynamicsDesc& desc)
+    : _model(model), _desc(desc), _n(model.size()) {
+  using model::Integrator;
+  _firstOrder = model::isFirstOrder(desc.integrator);
+  _explicit = model::isExplicit(desc.integrator);
+  switch (desc.integrator) {
+    case Integrator::Newmark: _schemeName = "Newmark (average acceleration)"; break;
+    case Integrator::Hht: _schemeName = "HHT"; break;
+    case Integrator::Bdf: _schemeName = "BDF" + std::to_string(desc.bdfOrder); break;
+    case Integrator::Rk4: _schemeName = "RK4 (explicit)"; break;
+    case Integrator::Abm4: _schemeName = "Adams-Bashforth-Moulton 4 (explicit)"; break;
+    default: _schemeName = "generalized-alpha";
+  }
+  if (model.driven()) {
+    Eigen::MatrixXd M;
+    model.mass(Eigen::VectorXd::Zero(_n), M);
+    _massFactor.compute(M);
+  }
+  const MPI_Comm self = PETSC_COMM_SELF;
+  PetscCallAbort(self, solvers::GeneralizedAlphaRegister());
+  PetscCallAbort(self, solvers::AdamsBashforthMoultonRegister());
+  PetscCallAbort(self, TSCreate(self, &_ts));
+  PetscCallAbort(self, TSSetOptionsPrefix(_ts, "ffr_"));
+  const PetscInt N = _firstOrder ? 2 * _n : _n;
+  PetscCallAbort(self, MatCreateSeqDense(self, N, N, nullptr, &_J));
+  if (_firstOrder) {
+    PetscCallAbort(self, VecCreateSeq(self, 2 * _n, &_Y));
+    if (desc.integrator == Integrator::Bdf) {
+      PetscCallAbort(self, TSSetType(_ts, TSBDF));
+      PetscCallAbort(self, TSBDFSetOrder(_ts, desc.bdfOrder));
+      PetscCallAbort(self, TSSetIFunction(_ts, nullptr, iFunction, this));
+      PetscCallAbort(self, TSSetIJacobian(_ts, _J, _J, iJacobian, this));
+    } else {
+      if (desc.integrator == Integrator::Rk4) {
+        PetscCallAbort(self, TSSetType(_ts, TSRK));
+        PetscCallAbort(self, TSRKSetType(_ts, TSRK4));
+      } else {
+        PetscCallAbort(self, TSSetType(_ts, solvers::kTsAdamsBashforthMoulton));
+      }
+      PetscCallAbort(self, TSSetRHSFunction(_ts, nullptr, rhsFunction, this));
+    }
+  } else {
+    PetscCallAbort(self, VecCreateSeq(self, _n, &_X));
+    PetscCallAbort(self, VecDuplicate(_X, &_V));
+    PetscCallAbort(self, TSSetType(_ts, solvers::kTsGeneralizedAlpha));
+    PetscCallAbort(self, TSSetI2Function(_ts, nullptr, i2Function, this));
+    PetscCallAbort(self, TSSetI2Jacobian(_ts, _J, _J, i2Jacobian, this));
+    solvers::AlphaParams p{0.0, 0.0, 0.5, 0.25};  // Newmark
+    if (desc.integrator == Integrator::Hht) {
+      const double a = desc.hhtAlpha;
+      p = {0.0, a, 0.5 + a, 0.25 * (1.0 + a) * (1.0 + a)};
+    } else if (desc.integrator == Integrator::GeneralizedAlpha) {
+      p = solvers::GeneralizedAlphaParamsFromRadius(desc.rhoInf);
+    }
+    PetscCallAbort(self, solvers::GeneralizedAlphaSetParams(_ts, p.alphaM, p.alphaF, p.gamma, p.beta));
+  }
+  const bool adaptive = desc.adaptive && desc.integrator == Integrator::Bdf;
+  PetscCallAbort(self, TSSetTimeStep(_ts, desc.dt));
+  PetscCallAbort(self, TSSetMaxTime(_ts, desc.tEnd));
+  PetscCallAbort(self, TSSetMaxSteps(_ts, adaptive ? PETSC_MAX_INT - 1
+                                                   : static_cast<PetscInt>(std::ceil(desc.tEnd / desc.dt - 1e-9)) + 1));
+  PetscCallAbort(self, TSSetExactFinalTime(_ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCallAbort(self, TSSetMaxSNESFailures(_ts, adaptive ? -1 : 1));
+  PetscCallAbort(self, TSSetErrorIfStepFails(_ts, PETSC_FALSE));
+  TSAdapt adapt;
+  PetscCallAbort(self, TSGetAdapt(_ts, &adapt));
+  PetscCallAbort(self, TSAdaptSetType(adapt, adaptive ? TSADAPTBASIC : TSADAPTNONE));
+  if (adaptive) {
+    PetscCallAbort(self, TSSetTolerances(_ts, desc.atol, nullptr, desc.rtol, nullptr));
+    PetscCallAbort(self, TSAdaptSetStepLimits(adapt, 1e-10 * desc.dt, desc.tEnd));
+  }
+  PetscCallAbort(self, TSMonitorSet(_ts, monitor, this, nullptr));
+  PetscCallAbort(self, TSSetApplicationContext(_ts, this));
+  PetscCallAbort(self, TSSetPostStep(_ts, postStep));
+  if (_explicit) return;
+  SNES snes;
+  SNESLineSearch ls;
+  KSP ksp;
+  PC pc;
+  PetscCallAbort(self, TSGetSNES(_ts, &snes));
+  // a residual of the size the stiffness gives a displacement error of 1e-13 L is converged
+  const double kScale = _model.matrices().K.lpNorm<Eigen::Infinity>() * _model.desc().length;
+  PetscCallAbort(self, SNESSetTolerances(snes, 1e-13 * kScale, 1e-10, 1e-14, 25, PETSC_DEFAULT));
+  PetscCallAbort(self, SNESGetLineSearch(snes, &ls));
+  PetscCallAbort(self, SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  PetscCallAbort(self, SNESGetKSP(snes, &ksp));
+  PetscCallAbort(self, KSPSetType(ksp, KSPPREONLY));
+  PetscCallAbort(self, KSPGetPC(ksp, &pc));
+  PetscCallAbort(self, PCSetType(pc, PCLU));
+}
+
+HubBeamDynamics::~HubBeamDynamics() {
+  TSDestroy(&_ts);
+  MatDestroy(&_J);
+  VecDestroy(&_X);
+  VecDestroy(&_V);
+  VecDestroy(&_Y);
+}
+
+PetscErrorCode HubBeamDynamics::setFromOptions() {
+  PetscFunctionBeginUser;
+  PetscCall(TSSetFromOptions(_ts));
+  PetscFunctionReturn(0);
+}
+
+void HubBeamDynamics::acceleration(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                   Eigen::VectorXd& a) const {
+  Eigen::VectorXd Q;
+  _model.force(t, q, v, Q);
+  if (_model.driven()) {
+    a = _massFactor.solve(Q);
+  } else {
+    Eigen::MatrixXd M;
+    _model.mass(q, M);
+    a = M.ldlt().solve(Q);  // symmetric positive definite (kinetic energy)
+  }
+}
+
+PetscErrorCode HubBeamDynamics::i2Function(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx) {
+  PetscFunctionBeginUser;
+  auto* self = static_cast<HubBeamDynamics*>(ctx);
+  const PetscInt n = self->_n;
+  Eigen::VectorXd f;
+  self->_model.residual(t, toEigen(U, 0, n), toEigen(V, 0, n), toEigen(A, 0, n), f);
+  toVec(f, F, 0);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode HubBeamDynamics::i2Jacobian(TS, PetscReal t, Vec U, Vec V, Vec A, PetscReal sV, PetscReal sA, Mat J,
+                                           Mat, void* ctx) {
+  PetscFunctionBeginUser;
+  auto* self = static_cast<HubBeamDynamics*>(ctx);
+  const PetscInt n = self->_n;
+  Eigen::MatrixXd m;
+  self->_model.jacobian(t, toEigen(U, 0, n), toEigen(V, 0, n), toEigen(A, 0, n), sV, sA, m);
+  PetscCall(fillDense(J, m));
+  PetscFunctionReturn(0);
+}
+
+// BDF: F(y, y') = (q' - v, F(t, q, v, v'))
+PetscErrorCode HubBeamDynamics::iFunction(TS, PetscReal t, Vec Y, Vec Ydot, Vec Fv, void* ctx) {
+  PetscFunctionBeginUser;
+  auto* self = static_cast<HubBeamDynamics*>(ctx);
+  const PetscInt n = self->_n;
+  const Eigen::VectorXd v = toEigen(Y, n, n);
+  Eigen::VectorXd f;
+  self->_model.residual(t, toEigen(Y, 0, n), v, toEigen(Ydot, n, n), f);
+  toVec(toEigen(Ydot, 0, n) - v, Fv, 0);
+  toVec(f, Fv, n);
+  PetscFunctionReturn(0);
+}
+
+// [s I, -I; dF/dq, dF/dv + s dF/da]
+PetscErrorCode HubBeamDynamics::iJacobian(TS, PetscReal t, Vec Y, Vec Ydot, PetscReal s, Mat J, Mat, void* ctx) {
+  PetscFunctionBeginUser;
+  auto* self = static_cast<HubBeamDynamics*>(ctx);
+  const PetscInt n = self->_n;
+  const Eigen::VectorXd q = toEigen(Y, 0, n), v = toEigen(Y, n, n), a = toEigen(Ydot, n, n);
+  Eigen::MatrixXd dq, dva;
+  self->_model.jacobian(t, q, v, a, 0.0, 0.0, dq);
+  self->_model.jacobian(t, q, v, a, 1.0, s, dva);
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  m.topLeftCorner(n, n).diagonal().setConstant(s);
+  m.topRightCorner(n, n).diagonal().setConstant(-1.0);
+  m.bottomLeftCorner(n, n) = dq;
+  m.bottomRightCorner(n, n) = dva - dq;
+  PetscCall(fillDense(J, m));
+  PetscFunctionReturn(0);
+}
+
+// explicit: y' = (v, M(q)^{-1} Q(t, q, v))
+PetscErrorCode HubBeamDynamics::rhsFunction(TS, PetscReal t, Vec Y, Vec Fv, void* ctx) {
+  PetscFunctionBeginUser;
+  auto* self = static_cast<HubBeamDynamics*>(ctx);
+  const PetscInt n = self->_n;
+  const Eigen::VectorXd q = toEigen(Y, 0, n), v = toEigen(Y, n, n);
+  Eigen::VectorXd a;
+  self->acceleration(t, q, v, a);
+  toVec(v, Fv, 0);
+  toVec(a, Fv, n);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode HubBeamDynamics::stateOf(Vec X, Eigen::VectorXd& q, Eigen::VectorXd& v) {
+  PetscFunctionBeginUser;
+  if (_firstOrder) {
+    q = toEigen(X, 0, _n);
+    v = toEigen(X, _n, _n);
+  } else {
+    Vec U, V;
+    PetscCall(TS2GetSolution(_ts, &U, &V));
+    q = toEigen(U, 0, _n);
+    v = toEigen(V, 0, _n);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode HubBeamDynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X, void* ctx) {
+  PetscFunctionBeginUser;
+  auto* self = static_cast<HubBeamDynamics*>(ctx);
+  Eigen::VectorXd q, v, a;
+  PetscCall(self->stateOf(X, q, v));
+  self->acceleration(t, q, v, a);
+  HubBeamStep s;
+  s.step = static_cast<int>(step);
+  s.time = t;
+  s.obs = self->_model.observe(t, q, v, a);
+  const double power = s.obs.hubTorque * s.obs.omega;
+  if (self->_haveLast) {
+    s.hubWork = self->_last.hubWork + 0.5 * (power + self->_lastPower) * (t - self->_last.time);
+    PetscInt its = 0, rejected = 0;
+    PetscCall(TSGetSNESIterations(ts, &its));
+    PetscCall(TSGetStepRejections(ts, &rejected));
+    static_assert(sizeof(PetscInt) >= sizeof(int));
+    s.newtonIterations = static_cast<int>(its) - self->_lastIterations;
+    self->_lastIterations = static_cast<int>(its);
+    s.rejectedSteps = static_cast<int>(rejected);
+  }
+  self->_last = s;
+  self->_lastPower = power;
+  self->_haveLast = true;
+  if (self->_onStep && *self->_onStep) (*self->_onStep)(s, q, v);
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// After every step: stop a run whose state is not finite or has left any beam model's range (the
+// reason survives here; TSStep resets it).
+PetscErrorCode postStep(TS ts) {
+  PetscFunctionBeginUser;
+  void* ctx;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  PetscCall(static_cast<HubBeamDynamics*>(ctx)->checkState(ts));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode HubBeamDynamics::checkState(TS ts) {
+  PetscFunctionBeginUser;
+  Vec X;
+  PetscReal t;
+  PetscInt step;
+  PetscCall(TSGetSolution(ts, &X));
+  PetscCall(TSGetTime(ts, &t));
+  PetscCall(TSGetStepNumber(ts, &step));
+  Eigen::VectorXd q, v;
+  PetscCall(stateOf(X, q, v));
+  const Eigen::VectorXd a = Eigen::VectorXd::Zero(_n);
+  const HubBeam::Observation o = _model.observe(t, q, v, a);
+  const double L = _model.desc().length;
+  const bool finite = q.allFinite() && v.allFinite();
+  const double tip = std::hypot(o.tipUx, o.tipUy);
+  if (finite && tip <= kDeformationLimit * L) PetscFunctionReturn(0);
+  std::ostringstream m;
+  m << _schemeName << ": at t = " << fmt(t, 6) << " s (step " << step << ") ";
+  if (!finite) m << "the state is not finite";
+  else m << "the tip has moved " << fmt(tip, 3) << " m in the floating frame, more than " << kDeformationLimit
+         << " beam lengths: the response diverges";
+  const double w1 = 3.5160152 * std::sqrt(_model.desc().E * _model.desc().I /
+                                          (_model.desc().rho * _model.desc().A * std::pow(L, 4)));
+  if (_model.desc().coupling == model::HubBeamCoupling::ZeroOrder && std::abs(o.omega) > w1)
+    m << ". The hub turns at " << fmt(o.omega, 4) << " rad/s, above the beam's first bending frequency " << fmt(w1, 4)
+      << " rad/s: the zero-order model softens dynamically there (seed 001 Eq. 7); use coupling: first_order";
+  else
+    m << ". Try a smaller dt, an implicit integrator (generalized_alpha), or check the load";
+  _stop = m.str();
+  PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode HubBeamDynamics::run(const StepCallback& onStep, std::string* failure) {
+  PetscFunctionBeginUser;
+  _onStep = &onStep;
+  _haveLast = false;
+  _lastIterations = 0;
+  _stop.clear();
+  failure->clear();
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(_n), v = Eigen::VectorXd::Zero(_n), a;
+  if (!_model.driven()) v[0] = _model.desc().initialRate;
+  PetscCall(TSSetTime(_ts, 0.0));
+  PetscCall(TSSetStepNumber(_ts, 0));
+  PetscCall(TSSetTimeStep(_ts, _desc.dt));
+  if (_firstOrder) {
+    toVec(q, _Y, 0);
+    toVec(v, _Y, _n);
+    PetscCall(TSSetSolution(_ts, _Y));
+    PetscCall(TSSolve(_ts, _Y));
+  } else {
+    toVec(q, _X, 0);
+    toVec(v, _V, 0);
+    acceleration(0.0, q, v, a);
+    Vec A;
+    PetscCall(VecDuplicate(_X, &A));
+    toVec(a, A, 0);
+    PetscCall(TS2SetSolution(_ts, _X, _V));
+    PetscCall(solvers::GeneralizedAlphaSetAcceleration(_ts, A));
+    PetscCall(VecDestroy(&A));
+    PetscCall(TSSolve(_ts, _X));
+  }
+  TSConvergedReason reason;
+  PetscCall(TSGetConvergedReason(_ts, &reason));
+  if (!_stop.empty()) {
+    *failure = _stop;
+  } else if (reason < 0) {
+    std::ostringstream m;
+    m << _schemeName << ": Newton failed at t = " << fmt(_last.time + _desc.dt, 6) << " s (step " << _last.step + 1
+      << ", reason " << TSConvergedReasons[reason] << "). Try a smaller dt";
+    *failure = m.str();
+  }
+  PetscFunctionReturn(0);
+}
+
+}  // namespace strand::ffr
