@@ -8,3 +8,4 @@ strand_test(NAME verify_spin_up SOURCES verification/test_spin_up.cpp LABELS ver
 strand_test(NAME verify_multibody SOURCES verification/test_multibody.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_integrators SOURCES verification/test_integrators.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_initial_state_and_loads SOURCES verification/test_initial_state_and_loads.cpp LABELS verification NPROCS 1 2)
+strand_test(NAME verify_hub_beam_dynamics SOURCES verification/test_hub_beam_dynamics.cpp LABELS verification)
