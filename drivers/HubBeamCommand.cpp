@@ -59,6 +59,13 @@ int runHubBeam(MPI_Comm comm, const model::SceneDescription& scene, const std::s
     if (rank == 0) std::printf("%s\n", s.c_str());
   };
   const model::HubBeamDesc& desc = scene.hubBeam;
+  for (const char* option : {"-restart", "-checkpoint", "-checkpoint_every", "-wall_time"}) {
+    PetscBool set = PETSC_FALSE;
+    PetscOptionsHasName(nullptr, nullptr, option, &set);
+    if (set)
+      throw InputError(desc.mark.where() + ": " + option + " is not supported for hub_beam scenes yet (a run takes "
+                       "seconds; rerun it instead)");
+  }
   std::unique_ptr<ffr::HubBeam> hb;
   try {  // bad input (a singular RPIM moment matrix, a support too small) before any file exists
     hb = std::make_unique<ffr::HubBeam>(desc);

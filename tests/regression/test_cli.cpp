@@ -421,3 +421,54 @@ TEST(Cli, WorkPrecisionBenchWritesJsonLinesAndAChart) {
   EXPECT_NE(bad.output.find("-schemes: unknown scheme 'euler'"), std::string::npos) << bad.output;
   fs::remove_all(dir);
 }
+
+// meshes/hub-beam-spin-up*.yaml: the floating-frame hub-beam of seed 001 (issue 5; verification in
+// tests/verification/test_hub_beam_dynamics.cpp). The same tip on 1 and 2 ranks (every rank
+// integrates the small system), the three discretizations within 3e-5 m of each other at t = 20 s
+// after a 0.4 m transient, and bad input named by key: a singular RPIM moment matrix, batch options.
+TEST(Cli, HubBeamScenesRunOnOneAndTwoRanksAndRefuseASingularRpim) {
+  const fs::path dir = scratchDir("hub-beam");
+  auto tip = [](const std::string& out) {
+    const size_t p = out.find("u_x ");
+    return p == std::string::npos ? std::string("none") : out.substr(p, out.find(';', p) - p);
+  };
+  const std::string scene = sourceDir() + "/meshes/hub-beam-spin-up.yaml";
+  auto one = runCommand(strandBinary() + " run " + scene + " -o " + (dir / "one.h5").string());
+  ASSERT_EQ(one.exitCode, 0) << one.output;
+  EXPECT_NE(one.output.find("steps 20000"), std::string::npos) << one.output;
+  EXPECT_NE(one.output.find("u_x 2.284"), std::string::npos) << one.output;
+  auto two = runCommand("env -i PATH=\"$PATH\" HOME=\"$HOME\" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                        "OMPI_MCA_btl_vader_single_copy_mechanism=none " + std::string(STRAND_MPIEXEC) + " -n 2 " +
+                        strandBinary() + " run " + scene + " -o " + (dir / "two.h5").string());
+  ASSERT_EQ(two.exitCode, 0) << two.output;
+  EXPECT_EQ(tip(two.output), tip(one.output)) << two.output;
+  for (const char* variant : {"-modes", "-rpim"}) {
+    auto r = runCommand(strandBinary() + " run " + sourceDir() + "/meshes/hub-beam-spin-up" + variant + ".yaml -o " +
+                        (dir / (std::string(variant) + ".h5")).string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const double uy = std::stod(r.output.substr(r.output.find("u_y ") + 4));
+    const double uyFem = std::stod(one.output.substr(one.output.find("u_y ") + 4));
+    EXPECT_LT(std::abs(uy - uyFem), 3e-5) << variant << ": " << r.output;
+  }
+  if (haveH5py()) {
+    auto h = runCommand("/usr/bin/python3 -c \"import h5py; f = h5py.File('" + (dir / "one.h5").string() +
+                        "'); print(f.attrs['status'], f['frames'].attrs['count'], len(f['series/tip_uy']))\"");
+    EXPECT_NE(h.output.find("ok 201 20001"), std::string::npos) << h.output;
+  }
+  const fs::path bad = dir / "bad.yaml";
+  {
+    std::ofstream f(bad);
+    f << "analysis: dynamic\nhub_beam:\n  beam: {length: 10, E: 70e9, A: 4e-4, I: 2e-7, rho: 3000}\n"
+         "  hub: {angle: {function: spin_up, omega: 4, duration: 15}}\n"
+         "  discretization: {method: rpim, nodes: 11, alpha_c: 8}\ndynamics: {dt: 1e-3, t_end: 1}\n";
+  }
+  auto r = runCommand(strandBinary() + " run " + bad.string() + " -o " + (dir / "bad.h5").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("bad.yaml:2: hub_beam.discretization.alpha_c: RPIM"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("numerically singular"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "bad.h5"));
+  auto restart = runCommand(strandBinary() + " run " + scene + " -restart x.h5 -o " + (dir / "r.h5").string());
+  EXPECT_EQ(restart.exitCode, 2) << restart.output;
+  EXPECT_NE(restart.output.find("-restart is not supported for hub_beam"), std::string::npos) << restart.output;
+  fs::remove_all(dir);
+}
