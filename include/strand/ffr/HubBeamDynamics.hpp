@@ -9,6 +9,9 @@
 //    y' = (v, M(q)^{-1} Q(t, q, v)), the explicit pair seed 001 section 3 compares with Newmark.
 // The system is small and dense (n <= a few hundred): one copy per rank on PETSC_COMM_SELF, dense
 // PETSc matrices with LU; every rank computes the same trajectory (rank 0 writes).
+// Small-system path (default for the generalized-alpha family; -ffr_dense false for the TS): the
+// same step as a plain loop on Eigen matrices: PETSc's layers cost 4.4x per step at 6 unknowns,
+// 1.7x at 30, 1.0x at 120 (docs/performance.md). BDF, RK4 and ABM4 run on PETSc TS.
 //
 // Monitors: the tip deformation in the floating frame, the hub's angle, rate and torque, and the
 // energy balance E = T + U - W_hub, W_hub = int tau theta' dt (trapezoidal), which the exact motion
@@ -22,6 +25,7 @@
 #include <string>
 
 #include "strand/ffr/HubBeam.hpp"
+#include "strand/solvers/GeneralizedAlpha.hpp"
 
 namespace strand::ffr {
 
@@ -64,12 +68,16 @@ private:
   static PetscErrorCode rhsFunction(TS, PetscReal t, Vec Y, Vec F, void* ctx);
   static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec X, void* ctx);
   PetscErrorCode stateOf(Vec X, Eigen::VectorXd& q, Eigen::VectorXd& v);
+  PetscErrorCode runDense();
+  void record(int step, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, int newton, int rejected);
+  std::string divergence(double t, int step, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
   void acceleration(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& a) const;
 
   const HubBeam& _model;
   model::DynamicsDesc _desc;
   std::string _schemeName;
-  bool _firstOrder = false, _explicit = false;
+  bool _firstOrder = false, _explicit = false, _dense = false;
+  solvers::AlphaParams _params{0.0, 0.0, 0.5, 0.25};
   int _n = 0;  // unknowns q
   TS _ts = nullptr;
   Mat _J = nullptr;
