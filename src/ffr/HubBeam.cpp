@@ -53,6 +53,23 @@ HubBeam::HubBeam(const model::HubBeamDesc& desc)
   _Ms = _m.M - _c * _m.Gc;
 }
 
+double HubBeam::firstBendingFrequency() const {
+  const double beta = AssumedModes::bendingRoot(1) / _desc.length;
+  return beta * beta * std::sqrt(_desc.E * _desc.I / (_desc.rho * _desc.A));
+}
+
+Eigen::VectorXd HubBeam::centrifugal(const Eigen::Ref<const Eigen::VectorXd>& d) const {
+  return _m.Sx.transpose() + _Ms * d;
+}
+
+Eigen::VectorXd HubBeam::coupling(const Eigen::Ref<const Eigen::VectorXd>& d) const {
+  return _m.Sy.transpose() + _m.A * d;
+}
+
+double HubBeam::hubInertiaWith(const Eigen::Ref<const Eigen::VectorXd>& d) const {
+  return _desc.hubInertia + _m.Job + 2 * _m.Sx.dot(d) + d.dot(_Ms * d);
+}
+
 void HubBeam::hub(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
                   double* theta, double* omega, double* alpha) const {
   if (_desc.driven) {
@@ -68,12 +85,12 @@ void HubBeam::residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd
   double th, w, al;
   hub(t, q, v, a, &th, &w, &al);
   const auto d = q.tail(_n), dv = v.tail(_n), da = a.tail(_n);
-  const Eigen::VectorXd s = _m.Sx.transpose() + _Ms * d;  // dJ/dd / 2
-  const Eigen::VectorXd b = _m.Sy.transpose() + _m.A * d;
+  const Eigen::VectorXd s = centrifugal(d);
+  const Eigen::VectorXd b = coupling(d);
   F.resize(size());
   F.tail(_n) = _m.M * da + al * b + (2 * w) * (_m.A * dv) - (w * w) * s + _m.K * d;
   if (!_desc.driven) {
-    const double J = _desc.hubInertia + _m.Job + 2 * _m.Sx.dot(d) + d.dot(_Ms * d);
+    const double J = hubInertiaWith(d);
     F[0] = J * al + b.dot(da) + 2 * w * s.dot(dv) - _desc.torque.at(t).f;
   }
 }
@@ -87,9 +104,9 @@ void HubBeam::jacobian(double t, const Eigen::VectorXd& q, const Eigen::VectorXd
   const int o = _desc.driven ? 0 : 1;
   Jm.block(o, o, _n, _n) = al * _m.A - (w * w) * _Ms + _m.K + (2 * w * shiftV) * _m.A + shiftA * _m.M;
   if (!_desc.driven) {
-    const Eigen::VectorXd s = _m.Sx.transpose() + _Ms * d;
-    const Eigen::VectorXd b = _m.Sy.transpose() + _m.A * d;
-    const double J = _desc.hubInertia + _m.Job + 2 * _m.Sx.dot(d) + d.dot(_Ms * d);
+    const Eigen::VectorXd s = centrifugal(d);
+    const Eigen::VectorXd b = coupling(d);
+    const double J = hubInertiaWith(d);
     Jm(0, 0) = shiftV * 2 * s.dot(dv) + shiftA * J;
     // dF_theta/dd: alpha dJ/dd + d(b.da)/dd + 2 w d(s.dv)/dd, with d(b.da)/dd = A^T da = -A da
     Jm.block(0, 1, 1, _n) = (2 * al * s - _m.A * da + (2 * w) * (_Ms * dv) + shiftV * 2 * w * s + shiftA * b).transpose();
@@ -103,8 +120,8 @@ void HubBeam::mass(const Eigen::VectorXd& q, Eigen::MatrixXd& Mq) const {
   Mq.block(o, o, _n, _n) = _m.M;
   if (!_desc.driven) {
     const auto d = q.tail(_n);
-    const Eigen::VectorXd b = _m.Sy.transpose() + _m.A * d;
-    Mq(0, 0) = _desc.hubInertia + _m.Job + 2 * _m.Sx.dot(d) + d.dot(_Ms * d);
+    const Eigen::VectorXd b = coupling(d);
+    Mq(0, 0) = hubInertiaWith(d);
     Mq.block(0, 1, 1, _n) = b.transpose();
     Mq.block(1, 0, _n, 1) = b;
   }
@@ -122,9 +139,9 @@ HubBeam::Observation HubBeam::observe(double t, const Eigen::VectorXd& q, const 
   double al;
   hub(t, q, v, a, &o.theta, &o.omega, &al);
   const auto d = q.tail(_n), dv = v.tail(_n), da = a.tail(_n);
-  const Eigen::VectorXd s = _m.Sx.transpose() + _Ms * d;
-  const Eigen::VectorXd b = _m.Sy.transpose() + _m.A * d;
-  const double J = _desc.hubInertia + _m.Job + 2 * _m.Sx.dot(d) + d.dot(_Ms * d);
+  const Eigen::VectorXd s = centrifugal(d);
+  const Eigen::VectorXd b = coupling(d);
+  const double J = hubInertiaWith(d);
   o.tipUx = _m.tipAxial.dot(d) - 0.5 * _c * d.dot(_m.Htip * d);
   o.tipUy = _m.tipBending.dot(d);
   o.tipVy = _m.tipBending.dot(dv);

@@ -5,6 +5,7 @@
 
 #include "strand/solvers/AdamsBashforthMoulton.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
+#include "strand/solvers/Schemes.hpp"
 
 namespace strand::ffr {
 
@@ -53,14 +54,7 @@ HubBeamDynamics::HubBeamDynamics(const HubBeam& model, const model::DynamicsDesc
   using model::Integrator;
   _firstOrder = model::isFirstOrder(desc.integrator);
   _explicit = model::isExplicit(desc.integrator);
-  switch (desc.integrator) {
-    case Integrator::Newmark: _schemeName = "Newmark (average acceleration)"; break;
-    case Integrator::Hht: _schemeName = "HHT"; break;
-    case Integrator::Bdf: _schemeName = "BDF" + std::to_string(desc.bdfOrder); break;
-    case Integrator::Rk4: _schemeName = "RK4 (explicit)"; break;
-    case Integrator::Abm4: _schemeName = "Adams-Bashforth-Moulton 4 (explicit)"; break;
-    default: _schemeName = "generalized-alpha";
-  }
+  _schemeName = solvers::schemeName(desc);
   if (model.driven()) {
     Eigen::MatrixXd M;
     model.mass(Eigen::VectorXd::Zero(_n), M);
@@ -95,32 +89,11 @@ HubBeamDynamics::HubBeamDynamics(const HubBeam& model, const model::DynamicsDesc
     PetscCallAbort(self, TSSetType(_ts, solvers::kTsGeneralizedAlpha));
     PetscCallAbort(self, TSSetI2Function(_ts, nullptr, i2Function, this));
     PetscCallAbort(self, TSSetI2Jacobian(_ts, _J, _J, i2Jacobian, this));
-    solvers::AlphaParams p{0.0, 0.0, 0.5, 0.25};  // Newmark
-    if (desc.integrator == Integrator::Hht) {
-      const double a = desc.hhtAlpha;
-      p = {0.0, a, 0.5 + a, 0.25 * (1.0 + a) * (1.0 + a)};
-    } else if (desc.integrator == Integrator::GeneralizedAlpha) {
-      p = solvers::GeneralizedAlphaParamsFromRadius(desc.rhoInf);
-    }
+    const solvers::AlphaParams p = _params = solvers::alphaParams(desc);
     PetscCallAbort(self, solvers::GeneralizedAlphaSetParams(_ts, p.alphaM, p.alphaF, p.gamma, p.beta));
-    _params = p;
     _dense = true;
   }
-  const bool adaptive = desc.adaptive && desc.integrator == Integrator::Bdf;
-  PetscCallAbort(self, TSSetTimeStep(_ts, desc.dt));
-  PetscCallAbort(self, TSSetMaxTime(_ts, desc.tEnd));
-  PetscCallAbort(self, TSSetMaxSteps(_ts, adaptive ? PETSC_MAX_INT - 1
-                                                   : static_cast<PetscInt>(std::ceil(desc.tEnd / desc.dt - 1e-9)) + 1));
-  PetscCallAbort(self, TSSetExactFinalTime(_ts, TS_EXACTFINALTIME_MATCHSTEP));
-  PetscCallAbort(self, TSSetMaxSNESFailures(_ts, adaptive ? -1 : 1));
-  PetscCallAbort(self, TSSetErrorIfStepFails(_ts, PETSC_FALSE));
-  TSAdapt adapt;
-  PetscCallAbort(self, TSGetAdapt(_ts, &adapt));
-  PetscCallAbort(self, TSAdaptSetType(adapt, adaptive ? TSADAPTBASIC : TSADAPTNONE));
-  if (adaptive) {
-    PetscCallAbort(self, TSSetTolerances(_ts, desc.atol, nullptr, desc.rtol, nullptr));
-    PetscCallAbort(self, TSAdaptSetStepLimits(adapt, 1e-10 * desc.dt, desc.tEnd));
-  }
+  PetscCallAbort(self, solvers::configureTimeStepping(_ts, desc));
   PetscCallAbort(self, TSMonitorSet(_ts, monitor, this, nullptr));
   PetscCallAbort(self, TSSetApplicationContext(_ts, this));
   PetscCallAbort(self, TSSetPostStep(_ts, postStep));
@@ -271,9 +244,10 @@ PetscErrorCode HubBeamDynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X
 }
 
 void HubBeamDynamics::record(int step, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, int newton,
-                             int rejected) {
+                             int rejected, const Eigen::VectorXd* known) {
   Eigen::VectorXd a;
-  acceleration(t, q, v, a);
+  if (known) a = *known;
+  else acceleration(t, q, v, a);
   HubBeamStep s;
   s.step = step;
   s.time = t;
@@ -331,8 +305,7 @@ std::string HubBeamDynamics::divergence(double t, int step, const Eigen::VectorX
   if (!finite) m << "the state is not finite";
   else m << "the tip has moved " << fmt(tip, 3) << " m in the floating frame, more than " << kDeformationLimit
          << " beam lengths: the response diverges";
-  const double w1 = 3.5160152 * std::sqrt(_model.desc().E * _model.desc().I /
-                                          (_model.desc().rho * _model.desc().A * std::pow(L, 4)));
+  const double w1 = _model.firstBendingFrequency();
   if (_model.desc().coupling == model::HubBeamCoupling::ZeroOrder && std::abs(o.omega) > w1)
     m << ". The hub turns at " << fmt(o.omega, 4) << " rad/s, above the beam's first bending frequency " << fmt(w1, 4)
       << " rad/s: the zero-order model softens dynamically there (seed 001 Eq. 7); use coupling: first_order";
@@ -344,8 +317,8 @@ std::string HubBeamDynamics::divergence(double t, int step, const Eigen::VectorX
 // The small-system path: the same generalized-alpha step as our TS (GeneralizedAlpha.hpp, Arnold &
 // Bruls 2007 Eq. 9-11; same predictor, same Newton tolerances, at least one Newton step) as a plain
 // loop on Eigen matrices. Measured (tests/benchmarks/bench_hub_beam.cpp, docs/performance.md):
-// PETSc's TS, SNES, KSP and Mat layers make a step 4.4x dearer at 6 unknowns (AMM 3 + 3), 1.7x at
-// 30, 1.0x at 120; same tip to 3e-12 m.
+// PETSc's TS, SNES, KSP and Mat layers make a step 6.5x dearer at 6 unknowns (AMM 3 + 3), 1.9x at
+// 30, 1.1x at 120; same tip to 3e-12 m.
 PetscErrorCode HubBeamDynamics::runDense() {
   PetscFunctionBeginUser;
   const solvers::AlphaParams& p = _params;
@@ -356,7 +329,7 @@ PetscErrorCode HubBeamDynamics::runDense() {
   Eigen::VectorXd a = A;
   Eigen::MatrixXd J;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-  record(0, 0.0, q, v, 0, 0);
+  record(0, 0.0, q, v, 0, 0, &A);
   double t = 0.0;
   for (int step = 1; t < _desc.tEnd * (1 - 1e-12); ++step) {
     const double h = std::min(_desc.dt, _desc.tEnd - t), t1 = t + h;
@@ -390,7 +363,7 @@ PetscErrorCode HubBeamDynamics::runDense() {
       break;
     }
     q = q1, v = v1, a = a1, A = A1, t = t1;
-    record(step, t, q, v, its, 0);
+    record(step, t, q, v, its, 0, &A);
     _stop = divergence(t, step, q, v);
     if (!_stop.empty()) break;
   }

@@ -1,4 +1,5 @@
 #include "strand/solvers/Dynamics.hpp"
+#include "strand/solvers/Schemes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -44,17 +45,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
 
   _firstOrder = model::isFirstOrder(desc.integrator);
   _explicit = model::isExplicit(desc.integrator);
-  const bool adaptive = desc.integrator == model::Integrator::Bdf && desc.adaptive;
-  switch (desc.integrator) {
-    case model::Integrator::Newmark: _schemeName = "Newmark (average acceleration)"; break;
-    case model::Integrator::Hht: _schemeName = "HHT-alpha"; break;
-    case model::Integrator::Bdf:
-      _schemeName = "BDF" + std::to_string(desc.bdfOrder) + (adaptive ? " (adaptive step)" : " (fixed step)");
-      break;
-    case model::Integrator::Rk4: _schemeName = "RK4 (explicit)"; break;
-    case model::Integrator::Abm4: _schemeName = "Adams-Bashforth-Moulton 4 (explicit)"; break;
-    default: _schemeName = "generalized-alpha";
-  }
+  _schemeName = solvers::schemeName(desc);
 
   PetscCallAbort(comm, GeneralizedAlphaRegister());
   PetscCallAbort(comm, AdamsBashforthMoultonRegister());
@@ -79,22 +70,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
     PetscCallAbort(comm, TSSetI2Jacobian(_ts, _J, _J, formJacobian, this));
     PetscCallAbort(comm, applyScheme());
   }
-  PetscCallAbort(comm, TSSetTimeStep(_ts, desc.dt));
-  PetscCallAbort(comm, TSSetMaxTime(_ts, desc.tEnd));
-  PetscCallAbort(comm, TSSetMaxSteps(_ts, adaptive ? PETSC_MAX_INT - 1
-                                                   : static_cast<PetscInt>(std::ceil(desc.tEnd / desc.dt - 1e-9)) + 1));
-  PetscCallAbort(comm, TSSetExactFinalTime(_ts, TS_EXACTFINALTIME_MATCHSTEP));
-  // fixed step: the first Newton failure ends the run with a message instead of a silent cut;
-  // adaptive: a failed Newton is a rejected step, retried with a smaller one
-  PetscCallAbort(comm, TSSetMaxSNESFailures(_ts, adaptive ? -1 : 1));
-  PetscCallAbort(comm, TSSetErrorIfStepFails(_ts, PETSC_FALSE));
-  TSAdapt adapt;
-  PetscCallAbort(comm, TSGetAdapt(_ts, &adapt));
-  PetscCallAbort(comm, TSAdaptSetType(adapt, adaptive ? TSADAPTBASIC : TSADAPTNONE));
-  if (adaptive) {
-    PetscCallAbort(comm, TSSetTolerances(_ts, desc.atol, nullptr, desc.rtol, nullptr));
-    PetscCallAbort(comm, TSAdaptSetStepLimits(adapt, 1e-10 * desc.dt, desc.tEnd));
-  }
+  PetscCallAbort(comm, configureTimeStepping(_ts, desc));
   PetscCallAbort(comm, TSMonitorSet(_ts, monitor, this, nullptr));
   PetscCallAbort(comm, TSSetApplicationContext(_ts, this));
   PetscCallAbort(comm, TSSetPostStep(_ts, postStep));
@@ -141,15 +117,7 @@ Dynamics::~Dynamics() {
 // with -dyn_ts_type alpha2).
 PetscErrorCode Dynamics::applyScheme() {
   PetscFunctionBeginUser;
-  // Arnold & Bruls 2007 parameters (alpha_m, alpha_f weight the start of the step)
-  AlphaParams p{0.0, 0.0, 0.5, 0.25};  // Newmark
-  if (_desc.integrator == model::Integrator::Hht) {
-    const double a = _desc.hhtAlpha;
-    p = {0.0, a, 0.5 + a, 0.25 * (1.0 + a) * (1.0 + a)};
-  } else if (_desc.integrator == model::Integrator::GeneralizedAlpha) {
-    p = GeneralizedAlphaParamsFromRadius(_desc.rhoInf);
-  }
-  _params = p;
+  const AlphaParams p = _params = alphaParams(_desc);
   PetscBool ours;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
   if (ours) PetscCall(GeneralizedAlphaSetParams(_ts, p.alphaM, p.alphaF, p.gamma, p.beta));

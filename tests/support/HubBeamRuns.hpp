@@ -19,7 +19,7 @@ struct TipSeries {
   std::string failure;
   double wallTime = 0.0;
   int steps = 0;
-  std::vector<ffr::HubBeamStep> steps_;  // every step (hub-beam runs)
+  std::vector<ffr::HubBeamStep> history;  // every step (hub-beam runs with keepSteps)
   double maxAbsUy() const {
     double m = 0.0;
     for (double v : uy) m = std::max(m, std::abs(v));
@@ -94,7 +94,7 @@ inline TipSeries runHubBeam(const model::HubBeamDesc& desc, const model::Dynamic
   PetscCallAbort(PETSC_COMM_SELF, solver.setFromOptions());
   TipSeries s;
   auto cb = [&](const ffr::HubBeamStep& st, const Eigen::VectorXd&, const Eigen::VectorXd&) {
-    if (keepSteps) s.steps_.push_back(st);
+    if (keepSteps) s.history.push_back(st);
     s.steps = st.step;
     if (st.step % every != 0 && st.time < dyn.tEnd * (1 - 1e-12)) return;
     s.t.push_back(st.time);

@@ -144,9 +144,9 @@ TEST(HubBeamFreeHub, EnergyAndAngularMomentumConverge) {
     d.torque.value = torque;
     const TipSeries s = runHubBeam(d, fixedStep(Integrator::Newmark, dt, 2.0), 1, true);
     EXPECT_TRUE(s.failure.empty()) << s.failure;
-    const ffr::HubBeamStep& a = s.steps_.front();
+    const ffr::HubBeamStep& a = s.history.front();
     *energy = *momentum = 0.0;
-    for (const ffr::HubBeamStep& st : s.steps_) {
+    for (const ffr::HubBeamStep& st : s.history) {
       *energy = std::max(*energy, std::abs(st.energy() - a.energy()) / a.energy());
       // with a torque the momentum grows by tau t
       *momentum = std::max(*momentum, std::abs(st.obs.angularMomentum - a.obs.angularMomentum - torque * st.time) /

@@ -55,6 +55,9 @@ public:
   int size() const { return _desc.driven ? _n : _n + 1; }
   // the hub's angle, rate and acceleration at t (driven hub)
   model::TimeValue hubMotion(double t) const { return _desc.angle.at(t); }
+  // omega_1 = (beta_1 / L)^2 sqrt(EI / (rho A)) of the non-rotating clamped-free beam (3.80 rad/s
+  // for seed 001's beam): above it the zero-order model softens
+  double firstBendingFrequency() const;
 
   // F(t, q, v, a), v = q', a = q''.
   void residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
@@ -80,6 +83,10 @@ private:
   // the hub's angle, rate and acceleration: prescribed, or the first entries of q, v, a
   void hub(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a, double* theta,
            double* omega, double* alpha) const;
+  // s(d) = Sx^T + (M - c Gc) d (= dJ/dd / 2), b(d) = Sy^T + A d, J(d) = J_oh + J_ob + 2 Sx d + d^T (M - c Gc) d
+  Eigen::VectorXd centrifugal(const Eigen::Ref<const Eigen::VectorXd>& d) const;
+  Eigen::VectorXd coupling(const Eigen::Ref<const Eigen::VectorXd>& d) const;
+  double hubInertiaWith(const Eigen::Ref<const Eigen::VectorXd>& d) const;
   model::HubBeamDesc _desc;
   std::unique_ptr<DeformationBasis> _basis;
   HubBeamMatrices _m;

@@ -10,8 +10,8 @@
 // The system is small and dense (n <= a few hundred): one copy per rank on PETSC_COMM_SELF, dense
 // PETSc matrices with LU; every rank computes the same trajectory (rank 0 writes).
 // Small-system path (default for the generalized-alpha family; -ffr_dense false for the TS): the
-// same step as a plain loop on Eigen matrices: PETSc's layers cost 4.4x per step at 6 unknowns,
-// 1.7x at 30, 1.0x at 120 (docs/performance.md). BDF, RK4 and ABM4 run on PETSc TS.
+// same step as a plain loop on Eigen matrices: PETSc's layers cost 6.5x per step at 6 unknowns,
+// 1.9x at 30, 1.1x at 120 (docs/performance.md). BDF, RK4 and ABM4 run on PETSc TS.
 //
 // Monitors: the tip deformation in the floating frame, the hub's angle, rate and torque, and the
 // energy balance E = T + U - W_hub, W_hub = int tau theta' dt (trapezoidal), which the exact motion
@@ -69,7 +69,9 @@ private:
   static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec X, void* ctx);
   PetscErrorCode stateOf(Vec X, Eigen::VectorXd& q, Eigen::VectorXd& v);
   PetscErrorCode runDense();
-  void record(int step, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, int newton, int rejected);
+  // the step's outputs and the callback; the acceleration is computed unless `known`
+  void record(int step, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, int newton, int rejected,
+              const Eigen::VectorXd* known = nullptr);
   std::string divergence(double t, int step, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
   void acceleration(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& a) const;
 

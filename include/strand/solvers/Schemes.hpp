@@ -1,0 +1,22 @@
+// What a scene's `dynamics` section means for a PETSc TS, shared by the ANCF dynamics
+// (Dynamics.hpp) and the floating-frame hub-beam (ffr/HubBeamDynamics.hpp).
+#pragma once
+#include <petscts.h>
+
+#include <string>
+
+#include "strand/model/SceneDescription.hpp"
+#include "strand/solvers/GeneralizedAlpha.hpp"
+
+namespace strand::solvers {
+
+// The scheme's name for messages, e.g. "BDF2 (fixed step)", "generalized-alpha".
+std::string schemeName(const model::DynamicsDesc& desc);
+// Arnold & Bruls 2007 parameters of the generalized-alpha family (alpha_m, alpha_f weight the start
+// of the step): Newmark, HHT from hht_alpha, generalized-alpha from rho_inf. Others: Newmark's.
+AlphaParams alphaParams(const model::DynamicsDesc& desc);
+// Step, final time, step count (landing on t_end), a fixed step's first Newton failure ending the
+// run (adaptive BDF: a rejected step), and the adaptor (BDF adaptive: TSADAPTBASIC with rtol/atol).
+PetscErrorCode configureTimeStepping(TS ts, const model::DynamicsDesc& desc);
+
+}  // namespace strand::solvers
