@@ -58,6 +58,11 @@ double HubBeam::firstBendingFrequency() const {
   return beta * beta * std::sqrt(_desc.E * _desc.I / (_desc.rho * _desc.A));
 }
 
+double HubBeam::highestFrequency() const {
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(_m.K, _m.M, Eigen::EigenvaluesOnly);
+  return std::sqrt(es.eigenvalues().maxCoeff());
+}
+
 Eigen::VectorXd HubBeam::centrifugal(const Eigen::Ref<const Eigen::VectorXd>& d) const {
   return _m.Sx.transpose() + _Ms * d;
 }

@@ -91,8 +91,9 @@ HubBeamDynamics::HubBeamDynamics(const HubBeam& model, const model::DynamicsDesc
     PetscCallAbort(self, TSSetI2Jacobian(_ts, _J, _J, i2Jacobian, this));
     const solvers::AlphaParams p = _params = solvers::alphaParams(desc);
     PetscCallAbort(self, solvers::GeneralizedAlphaSetParams(_ts, p.alphaM, p.alphaF, p.gamma, p.beta));
-    _dense = true;
   }
+  // the small-system path runs every fixed-step scheme; adaptive BDF needs TSBDF's error control
+  _dense = !(desc.integrator == Integrator::Bdf && desc.adaptive);
   PetscCallAbort(self, solvers::configureTimeStepping(_ts, desc));
   PetscCallAbort(self, TSMonitorSet(_ts, monitor, this, nullptr));
   PetscCallAbort(self, TSSetApplicationContext(_ts, this));
@@ -103,9 +104,7 @@ HubBeamDynamics::HubBeamDynamics(const HubBeam& model, const model::DynamicsDesc
   KSP ksp;
   PC pc;
   PetscCallAbort(self, TSGetSNES(_ts, &snes));
-  // a residual of the size the stiffness gives a displacement error of 1e-13 L is converged
-  const double kScale = _model.matrices().K.lpNorm<Eigen::Infinity>() * _model.desc().length;
-  PetscCallAbort(self, SNESSetTolerances(snes, 1e-13 * kScale, 1e-10, 1e-14, 25, PETSC_DEFAULT));
+  PetscCallAbort(self, SNESSetTolerances(snes, newtonTolerance(), 1e-10, 1e-14, 25, PETSC_DEFAULT));
   // at least one Newton step: the predictor's residual can be below atol at small steps, and
   // accepting it unsolved lets a displacement error of atol / |K| per step accumulate (measured:
   // 1.2e-7 m of tip error after 3e5 steps). The driven hub is linear: one step solves it exactly.
@@ -129,10 +128,19 @@ HubBeamDynamics::~HubBeamDynamics() {
 PetscErrorCode HubBeamDynamics::setFromOptions() {
   PetscFunctionBeginUser;
   PetscCall(TSSetFromOptions(_ts));
+  // -ffr_dense wins; otherwise PETSc options for this TS (-ffr_ts_*, -ffr_snes_*, ...) ask for the TS
   PetscBool dense = _dense ? PETSC_TRUE : PETSC_FALSE, set = PETSC_FALSE;
   PetscCall(PetscOptionsGetBool(nullptr, "ffr_", "-dense", &dense, &set));
-  PetscCheck(!(set && dense) || !_firstOrder, PETSC_COMM_SELF, PETSC_ERR_SUP,
-             "-ffr_dense: the dense loop runs the generalized-alpha family; %s runs on PETSc TS", _schemeName.c_str());
+  if (!set && _dense) {
+    char* all = nullptr;
+    PetscCall(PetscOptionsGetAll(nullptr, &all));
+    const std::string options = all ? all : "";
+    PetscCall(PetscFree(all));
+    for (const char* p : {"-ffr_ts_", "-ffr_snes_", "-ffr_ksp_", "-ffr_pc_"})
+      if (options.find(p) != std::string::npos) dense = PETSC_FALSE;
+  }
+  PetscCheck(!(dense && _desc.integrator == model::Integrator::Bdf && _desc.adaptive), PETSC_COMM_SELF, PETSC_ERR_SUP,
+             "-ffr_dense: adaptive BDF runs on PETSc TS (TSBDF's error control); use a fixed step for the dense loop");
   _dense = dense;
   PetscFunctionReturn(0);
 }
@@ -310,64 +318,8 @@ std::string HubBeamDynamics::divergence(double t, int step, const Eigen::VectorX
     m << ". The hub turns at " << fmt(o.omega, 4) << " rad/s, above the beam's first bending frequency " << fmt(w1, 4)
       << " rad/s: the zero-order model softens dynamically there (seed 001 Eq. 7); use coupling: first_order";
   else
-    m << ". Try a smaller dt, an implicit integrator (generalized_alpha), or check the load";
+    m << ". " << solvers::stabilityNote(_desc) << "Try a smaller dt, an implicit integrator (generalized_alpha), or check the load";
   return m.str();
-}
-
-// The small-system path: the same generalized-alpha step as our TS (GeneralizedAlpha.hpp, Arnold &
-// Bruls 2007 Eq. 9-11; same predictor, same Newton tolerances, at least one Newton step) as a plain
-// loop on Eigen matrices. Measured (tests/benchmarks/bench_hub_beam.cpp, docs/performance.md):
-// PETSc's TS, SNES, KSP and Mat layers make a step 6.5x dearer at 6 unknowns (AMM 3 + 3), 1.9x at
-// 30, 1.1x at 120; same tip to 3e-12 m.
-PetscErrorCode HubBeamDynamics::runDense() {
-  PetscFunctionBeginUser;
-  const solvers::AlphaParams& p = _params;
-  const double kScale = _model.matrices().K.lpNorm<Eigen::Infinity>() * _model.desc().length;
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(_n), v = Eigen::VectorXd::Zero(_n), A, F, dq;
-  if (!_model.driven()) v[0] = _model.desc().initialRate;
-  acceleration(0.0, q, v, A);
-  Eigen::VectorXd a = A;
-  Eigen::MatrixXd J;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-  record(0, 0.0, q, v, 0, 0, &A);
-  double t = 0.0;
-  for (int step = 1; t < _desc.tEnd * (1 - 1e-12); ++step) {
-    const double h = std::min(_desc.dt, _desc.tEnd - t), t1 = t + h;
-    const double sV = p.gamma / (p.beta * h), sA = (1 - p.alphaM) / ((1 - p.alphaF) * p.beta * h * h);
-    Eigen::VectorXd q1 = q + h * v + 0.5 * h * h * A, a1, v1, A1;
-    auto update = [&] {
-      a1 = (q1 - q - h * v - h * h * (0.5 - p.beta) * a) / (p.beta * h * h);
-      v1 = v + h * ((1 - p.gamma) * a + p.gamma * a1);
-      A1 = ((1 - p.alphaM) * a1 + p.alphaM * a - p.alphaF * A) / (1 - p.alphaF);
-    };
-    update();
-    _model.residual(t1, q1, v1, A1, F);
-    const double f0 = F.norm();
-    int its = 0;
-    bool converged = false;
-    for (; its < 25 && !converged; ++its) {
-      _model.jacobian(t1, q1, v1, A1, sV, sA, J);
-      lu.compute(J);
-      q1 -= lu.solve(F);
-      update();
-      _model.residual(t1, q1, v1, A1, F);
-      const double f = F.norm();
-      converged = f <= 1e-13 * kScale || f <= 1e-10 * f0;
-      if (!std::isfinite(f)) break;
-    }
-    if (!converged) {
-      std::ostringstream m;
-      m << _schemeName << ": Newton failed at t = " << fmt(t1, 6) << " s (step " << step << ", " << its
-        << " iterations, |F| " << fmt(F.norm(), 3) << "). Try a smaller dt";
-      _stop = m.str();
-      break;
-    }
-    q = q1, v = v1, a = a1, A = A1, t = t1;
-    record(step, t, q, v, its, 0, &A);
-    _stop = divergence(t, step, q, v);
-    if (!_stop.empty()) break;
-  }
-  PetscFunctionReturn(0);
 }
 
 PetscErrorCode HubBeamDynamics::run(const StepCallback& onStep, std::string* failure) {
@@ -377,8 +329,7 @@ PetscErrorCode HubBeamDynamics::run(const StepCallback& onStep, std::string* fai
   _lastIterations = 0;
   _stop.clear();
   failure->clear();
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(_n), v = Eigen::VectorXd::Zero(_n), a;
-  if (!_model.driven()) v[0] = _model.desc().initialRate;
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(_n), v = initialRate(), a;
   if (_dense) {
     PetscCall(runDense());
     *failure = _stop;
@@ -408,11 +359,18 @@ PetscErrorCode HubBeamDynamics::run(const StepCallback& onStep, std::string* fai
   PetscCall(TSGetConvergedReason(_ts, &reason));
   if (!_stop.empty()) {
     *failure = _stop;
-  } else if (reason < 0) {
-    std::ostringstream m;
-    m << _schemeName << ": Newton failed at t = " << fmt(_last.time + _desc.dt, 6) << " s (step " << _last.step + 1
-      << ", reason " << TSConvergedReasons[reason] << "). Try a smaller dt";
-    *failure = m.str();
+  } else if (reason < 0) {  // a Newton failure (a fixed step: the TS stops at the first)
+    SNES snes;
+    Vec F;
+    PetscInt its;
+    PetscReal t, h, norm;
+    PetscCall(TSGetSNES(_ts, &snes));
+    PetscCall(SNESGetIterationNumber(snes, &its));
+    PetscCall(SNESGetFunction(snes, &F, nullptr, nullptr));
+    PetscCall(VecNorm(F, NORM_2, &norm));
+    PetscCall(TSGetTime(_ts, &t));
+    PetscCall(TSGetTimeStep(_ts, &h));
+    *failure = newtonFailure(t + h, _last.step + 1, static_cast<int>(its), norm);
   }
   PetscFunctionReturn(0);
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "strand/solvers/Dynamics.hpp"
+#include "strand/solvers/Schemes.hpp"
 
 namespace strand::solvers {
 
@@ -14,8 +15,8 @@ std::string Dynamics::failureHint(const DynamicsStep&) const {
            "the trapezoidal rule): the error of the multipliers is not damped and grows (Arnold & Bruls 2007). "
            "Use rho_inf <= 0.9 (docs/user-guide.md, \"Joints\").";
   if (_desc.integrator == model::Integrator::Bdf)
-    return _desc.adaptive ? "Try tighter rtol/atol, a smaller first dynamics.dt, or -dyn_snes_monitor."
-                          : "Try a smaller dynamics.dt, adaptive: true, or -dyn_snes_monitor.";
+    return stabilityNote(_desc) + (_desc.adaptive ? "Try tighter rtol/atol, a smaller first dynamics.dt, or -dyn_snes_monitor."
+                                                  : "Try a smaller dynamics.dt, adaptive: true, or -dyn_snes_monitor.");
   return "Try a smaller dynamics.dt, rho_inf < 1 to damp the highest modes, -dyn_ts_strand_alpha_predictor "
          "displacement (fine, stiff meshes under suddenly applied loads; docs/performance.md), or -dyn_snes_monitor.";
 }

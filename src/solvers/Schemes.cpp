@@ -51,4 +51,13 @@ PetscErrorCode configureTimeStepping(TS ts, const model::DynamicsDesc& desc) {
   PetscFunctionReturn(0);
 }
 
+std::string stabilityNote(const model::DynamicsDesc& desc) {
+  if (desc.integrator != model::Integrator::Bdf || desc.bdfOrder < 3) return {};
+  // band of h omega on the imaginary axis where the largest root exceeds 1, and that root's maximum
+  static const char* const kBand[] = {"0 < h omega < 1.94 (up to 4.6 % per step)", "0 < h omega < 4.71 (up to 19 %)",
+                                      "0.71 < h omega < 9.39 (up to 38 %)"};
+  return "BDF" + std::to_string(desc.bdfOrder) + " is not A-stable: an undamped mode with " +
+         kBand[std::min(desc.bdfOrder, 5) - 3] + " grows; use BDF2 or generalized-alpha. ";
+}
+
 }  // namespace strand::solvers

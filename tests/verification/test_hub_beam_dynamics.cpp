@@ -206,3 +206,45 @@ TEST(HubBeamIntegrators, EverySchemeConvergesToOneTip) {
     }
   }
 }
+
+// The small-system path (src/ffr/HubBeamDense.cpp) against PETSc TS, scheme by scheme: the same
+// steps, so the same trajectory to the Newton tolerance (1e-13 L per step in displacement). Driven
+// hub (linear in d, AMM 3 + 3) and free hub with a torque (nonlinear: the hub inertia J(d), FEM 6).
+// A regression between two implementations of one method, not a verification; the methods are
+// verified above (rates, invariants, ANCF).
+TEST(HubBeamIntegrators, DenseLoopFollowsPetscTsForEveryFixedStepScheme) {
+  model::HubBeamDesc free = seed001HubBeam(70e9, 0.0, HubBeamMethod::Fem, 6);
+  free.driven = false;
+  free.hubInertia = 200.0;
+  free.initialRate = 2.0;
+  free.torque.kind = model::TimeFunction::Kind::Constant;
+  free.torque.value = 500.0;
+  const model::HubBeamDesc driven = seed001HubBeam(70e9, 4.0, HubBeamMethod::AssumedModes, 3);
+  struct Case { Integrator i; int bdfOrder; double dt; const char* name; };
+  for (const model::HubBeamDesc& d : {driven, free}) {
+    const double h = 0.3 / ffr::HubBeam(d).highestFrequency();  // explicit schemes: stable for ABM4
+    for (const Case c : {Case{Integrator::Newmark, 2, 1e-3, "Newmark"}, Case{Integrator::Hht, 2, 1e-3, "HHT"},
+                         Case{Integrator::GeneralizedAlpha, 2, 1e-3, "generalized-alpha"},
+                         Case{Integrator::Bdf, 1, 1e-3, "BDF1"}, Case{Integrator::Bdf, 2, 1e-3, "BDF2"},
+                         Case{Integrator::Bdf, 3, 1e-3, "BDF3"}, Case{Integrator::Bdf, 5, 1e-3, "BDF5"},
+                         Case{Integrator::Rk4, 2, h, "RK4"}, Case{Integrator::Abm4, 2, h, "ABM4"}}) {
+      model::DynamicsDesc dyn = fixedStep(c.i, c.dt, 1.0);
+      dyn.bdfOrder = c.bdfOrder;
+      PetscCallAbort(PETSC_COMM_SELF, PetscOptionsSetValue(nullptr, "-ffr_dense", "false"));
+      const TipSeries ts = runHubBeam(d, dyn, 1, true);
+      PetscCallAbort(PETSC_COMM_SELF, PetscOptionsClearValue(nullptr, "-ffr_dense"));
+      const TipSeries dense = runHubBeam(d, dyn, 1, true);
+      ASSERT_EQ(ts.steps, dense.steps) << c.name;
+      // a method that fails, fails alike: same time, step and reason (BDF 3 and 5 are not A-stable;
+      // the iteration count after a failed Newton differs: SNES also stops on its divergence test)
+      auto head = [](const std::string& m) { return m.substr(0, m.find(", ", m.find("(step"))); };
+      EXPECT_EQ(head(ts.failure), head(dense.failure)) << c.name;
+      const double du = dense.maxDifferenceUy(ts);
+      const double dtheta = std::abs(dense.history.back().obs.theta - ts.history.back().obs.theta);
+      std::printf("%s hub, %-18s %d steps: max |du_y| %.2e m, |dtheta| %.2e rad%s%s\n", d.driven ? "driven" : "free",
+                  c.name, dense.steps, du, dtheta, ts.failure.empty() ? "" : "; both stop: ", ts.failure.c_str());
+      EXPECT_LT(du, 1e-10) << c.name;
+      EXPECT_LT(dtheta, 1e-10) << c.name;
+    }
+  }
+}

@@ -58,6 +58,9 @@ public:
   // omega_1 = (beta_1 / L)^2 sqrt(EI / (rho A)) of the non-rotating clamped-free beam (3.80 rad/s
   // for seed 001's beam): above it the zero-order model softens
   double firstBendingFrequency() const;
+  // the highest natural frequency of the discretized beam on a hub at rest, sqrt(max eig(K, M)):
+  // what limits an explicit step (RK4: h omega_max <= 2.8)
+  double highestFrequency() const;
 
   // F(t, q, v, a), v = q', a = q''.
   void residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,

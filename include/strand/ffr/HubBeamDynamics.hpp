@@ -9,9 +9,10 @@
 //    y' = (v, M(q)^{-1} Q(t, q, v)), the explicit pair seed 001 section 3 compares with Newmark.
 // The system is small and dense (n <= a few hundred): one copy per rank on PETSC_COMM_SELF, dense
 // PETSc matrices with LU; every rank computes the same trajectory (rank 0 writes).
-// Small-system path (default for the generalized-alpha family; -ffr_dense false for the TS): the
-// same step as a plain loop on Eigen matrices: PETSc's layers cost 6.5x per step at 6 unknowns,
-// 1.9x at 30, 1.1x at 120 (docs/performance.md). BDF, RK4 and ABM4 run on PETSc TS.
+// Small-system path (HubBeamDense.cpp; the default for every fixed-step scheme): the same steps as
+// plain loops on Eigen matrices, because PETSc's layers cost several times more per step at a few
+// unknowns (docs/performance.md). The TS runs for adaptive BDF, with -ffr_dense false, or when
+// PETSc options for it are given (-ffr_ts_*, -ffr_snes_*, -ffr_ksp_*, -ffr_pc_*).
 //
 // Monitors: the tip deformation in the floating frame, the hub's angle, rate and torque, and the
 // energy balance E = T + U - W_hub, W_hub = int tau theta' dt (trapezoidal), which the exact motion
@@ -69,6 +70,12 @@ private:
   static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec X, void* ctx);
   PetscErrorCode stateOf(Vec X, Eigen::VectorXd& q, Eigen::VectorXd& v);
   PetscErrorCode runDense();
+  PetscErrorCode runDenseAlpha();
+  PetscErrorCode runDenseBdf();
+  PetscErrorCode runDenseExplicit();
+  double newtonTolerance() const;  // |F| of a displacement error of 1e-13 L
+  Eigen::VectorXd initialRate() const;  // v(0): zero, or the free hub's initial rate
+  std::string newtonFailure(double t, int step, int its, double norm) const;
   // the step's outputs and the callback; the acceleration is computed unless `known`
   void record(int step, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, int newton, int rejected,
               const Eigen::VectorXd* known = nullptr);

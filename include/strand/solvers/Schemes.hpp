@@ -18,5 +18,9 @@ AlphaParams alphaParams(const model::DynamicsDesc& desc);
 // Step, final time, step count (landing on t_end), a fixed step's first Newton failure ending the
 // run (adaptive BDF: a rejected step), and the adaptor (BDF adaptive: TSADAPTBASIC with rtol/atol).
 PetscErrorCode configureTimeStepping(TS ts, const model::DynamicsDesc& desc);
+// For a failure message: why the scheme itself can fail on an undamped model, or empty. BDF 3-5 are
+// not A-stable: an undamped mode grows where h omega lies in the band below (roots of the BDF
+// polynomial for lambda = i omega, computed; Hairer & Wanner, Solving ODEs II, V.2).
+std::string stabilityNote(const model::DynamicsDesc& desc);
 
 }  // namespace strand::solvers
