@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
           const double wmax = ffr::HubBeam(d).highestFrequency();
           dt = std::min(1e-3, (sc.i == Integrator::Rk4 ? 2.0 : 0.3) / wmax);
           dt = tEnd / std::ceil(tEnd / dt);
-          if (tEnd / dt > 2e5) continue;  // fine models: explicit steps too many for a study (see docs)
+          if (tEnd / dt > 2e6) continue;  // fine models: explicit steps too many for a study (see docs)
         }
         model::DynamicsDesc dyn = fixedStep(sc.i, dt, tEnd);
         dyn.rhoInf = 0.9;

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "strand/ffr/HubBeamDynamics.hpp"
+#include "strand/io/SceneReader.hpp"
 #include "strand/solvers/Dynamics.hpp"
+#include "support/Cli.hpp"
 #include "support/Scenes.hpp"
 
 namespace strand::testing {
@@ -76,6 +78,23 @@ inline model::HubBeamDesc seed001HubBeam(double E, double omega0, model::HubBeam
   d.elements = size;
   d.nodes = size;
   d.axialModes = d.bendingModes = size;
+  return d;
+}
+
+// A hub-beam scene of meshes/ (its hub_beam and dynamics sections): the verification cases start
+// from the scenes users run, so a scene and its documented numbers cannot drift apart.
+struct HubBeamScene {
+  model::HubBeamDesc hub;
+  model::DynamicsDesc dynamics;
+};
+inline HubBeamScene hubBeamScene(const std::string& file) {
+  const model::SceneDescription sc = io::readScene(sourceDir() + "/meshes/" + file);
+  return {sc.hubBeam, sc.dynamics};
+}
+// the same scene with another discretization
+inline model::HubBeamDesc withMethod(model::HubBeamDesc d, model::HubBeamMethod method, int size) {
+  d.method = method;
+  d.elements = d.nodes = d.axialModes = d.bendingModes = size;
   return d;
 }
 

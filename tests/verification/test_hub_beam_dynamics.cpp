@@ -21,6 +21,8 @@
 //     T + U - int tau theta' dt and L - tau t stay constant up to an error falling at rate 2.
 //  7. Every integrator of the ANCF dynamics runs the hub-beam (AMM 3 + 3, t = 3 s) and converges to
 //     one tip: Newmark, HHT, generalized-alpha, BDF2 at rate 2; RK4 and ABM4 at round-off already.
+// Each case starts from its scene in meshes/ (hub-beam-*.yaml; support/HubBeamRuns.hpp hubBeamScene),
+// so the scenes users run are the verified ones; variants change the discretization or one value.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,23 +36,18 @@ using namespace strand::testing;
 using model::HubBeamMethod;
 using model::Integrator;
 
-namespace {
-const auto kNewmark = fixedStep(Integrator::Newmark, 1e-3, 20.0);
-}
-
 TEST(HubBeamSpinUp, FourRadPerSecondAllDiscretizationsFollowAncf) {
   const TipSeries ancf = runAncfSpinUp(70e9, 4.0, 10, 1e-3, 20.0, 10);
   ASSERT_TRUE(ancf.failure.empty()) << ancf.failure;
   const double peakY = ancf.maxAbsUy(), peakX = ancf.maxAbsUx();
   std::printf("ANCF 10 elements: peak |u_y| %.5f m, peak |u_x| %.4e m, amplitude after T %.4e m\n", peakY, peakX,
               ancf.amplitudeAfter(15.0));
-  struct Case { HubBeamMethod m; int size; };
-  for (const Case c : {Case{HubBeamMethod::Fem, 10}, Case{HubBeamMethod::Rpim, 11}, Case{HubBeamMethod::AssumedModes, 3}}) {
-    const TipSeries s = runHubBeam(seed001HubBeam(70e9, 4.0, c.m, c.size), kNewmark, 10);
+  for (const char* file : {"hub-beam-spin-up.yaml", "hub-beam-spin-up-rpim.yaml", "hub-beam-spin-up-modes.yaml"}) {
+    const HubBeamScene sc = hubBeamScene(file);  // FEM 10, RPIM 11, AMM 3 + 3; Newmark 1 ms, 20 s
+    const TipSeries s = runHubBeam(sc.hub, sc.dynamics, 10);
     ASSERT_TRUE(s.failure.empty()) << s.failure;
     const double dy = s.maxDifferenceUy(ancf) / peakY, dx = s.maxDifferenceUx(ancf) / peakX;
-    std::printf("%-6d %s: max |du_y| / peak %.2e, max |du_x| / peak %.2e, amplitude %.4e m (%+.3f %%)\n", c.size,
-                c.m == HubBeamMethod::Fem ? "fem" : c.m == HubBeamMethod::Rpim ? "rpim" : "modes", dy, dx,
+    std::printf("%s: max |du_y| / peak %.2e, max |du_x| / peak %.2e, amplitude %.4e m (%+.3f %%)\n", file, dy, dx,
                 s.amplitudeAfter(15.0), 100 * (s.amplitudeAfter(15.0) / ancf.amplitudeAfter(15.0) - 1));
     EXPECT_LT(dy, 2e-3);
     EXPECT_LT(dx, 2e-3);
@@ -58,9 +55,10 @@ TEST(HubBeamSpinUp, FourRadPerSecondAllDiscretizationsFollowAncf) {
 }
 
 TEST(HubBeamSpinUp, TwentyRadPerSecondAssumedModesDepart) {
-  const double ref = runHubBeam(seed001HubBeam(30e9, 20.0, HubBeamMethod::Fem, 40), kNewmark).amplitudeAfter(15.0);
+  const HubBeamScene sc = hubBeamScene("hub-beam-fast-spin-up.yaml");  // FEM 20
+  const double ref = runHubBeam(withMethod(sc.hub, HubBeamMethod::Fem, 40), sc.dynamics).amplitudeAfter(15.0);
   auto err = [&](HubBeamMethod m, int size) {
-    const TipSeries s = runHubBeam(seed001HubBeam(30e9, 20.0, m, size), kNewmark);
+    const TipSeries s = runHubBeam(withMethod(sc.hub, m, size), sc.dynamics);
     EXPECT_TRUE(s.failure.empty()) << s.failure;
     return s.amplitudeAfter(15.0) / ref - 1;
   };
@@ -75,13 +73,14 @@ TEST(HubBeamSpinUp, TwentyRadPerSecondAssumedModesDepart) {
 }
 
 TEST(HubBeamSpinUp, LargeDeformationAssumedModesDepart) {
-  const TipSeries ref = runHubBeam(seed001HubBeam(5e9, 4.0, HubBeamMethod::Fem, 40), kNewmark);
+  const HubBeamScene sc = hubBeamScene("hub-beam-large-deflection.yaml");  // FEM 10
+  const TipSeries ref = runHubBeam(withMethod(sc.hub, HubBeamMethod::Fem, 40), sc.dynamics);
   ASSERT_TRUE(ref.failure.empty()) << ref.failure;
   const double peak = ref.maxAbsUy();
   std::printf("E = 5 GPa: peak tip deflection %.4f m (FEM 40)\n", peak);
   EXPECT_GT(peak, 5.0);
   auto dev = [&](HubBeamMethod m, int size) {
-    const TipSeries s = runHubBeam(seed001HubBeam(5e9, 4.0, m, size), kNewmark);
+    const TipSeries s = runHubBeam(withMethod(sc.hub, m, size), sc.dynamics);
     EXPECT_TRUE(s.failure.empty()) << s.failure;
     return s.maxDifferenceUy(ref) / peak;
   };
@@ -96,38 +95,41 @@ TEST(HubBeamSpinUp, LargeDeformationAssumedModesDepart) {
 TEST(HubBeamSpinUp, ZeroOrderModelDivergesAboveFirstBendingFrequency) {
   // the time at which the hub's rate passes omega_1 = 3.5160 sqrt(EI / (rho A L^4))
   const double w1 = 3.5160153 * std::sqrt(70e9 * 2e-7 / (3000 * 4e-4 * 1e4));
-  model::HubBeamDesc d = seed001HubBeam(70e9, 4.0, HubBeamMethod::Fem, 10);
+  const HubBeamScene sc = hubBeamScene("hub-beam-zero-order.yaml");  // FEM 10, zero order
+  ASSERT_EQ(sc.hub.coupling, model::HubBeamCoupling::ZeroOrder);
+  model::HubBeamDesc d = sc.hub;
   double tCross = 0.0;
   while (d.angle.at(tCross).df < w1) tCross += 1e-3;
-  d.coupling = model::HubBeamCoupling::ZeroOrder;
-  const TipSeries zero = runHubBeam(d, kNewmark);
+  const TipSeries zero = runHubBeam(d, sc.dynamics);
   std::printf("omega_1 = %.4f rad/s reached at t = %.3f s; zero-order run: %s\n", w1, tCross, zero.failure.c_str());
   ASSERT_FALSE(zero.failure.empty());
   EXPECT_NE(zero.failure.find("first bending frequency"), std::string::npos);
   EXPECT_GT(zero.t.back(), tCross);
   d.coupling = model::HubBeamCoupling::FirstOrder;
-  const TipSeries first = runHubBeam(d, kNewmark);
+  const TipSeries first = runHubBeam(d, sc.dynamics);
   EXPECT_TRUE(first.failure.empty());
   EXPECT_LT(first.maxAbsUy(), 0.5);
   d.coupling = model::HubBeamCoupling::ZeroOrder;
   d.angle.omega = 3.7;
-  const TipSeries below = runHubBeam(d, kNewmark);
+  const TipSeries below = runHubBeam(d, sc.dynamics);
   std::printf("first order: peak |u_y| %.4f m; zero order at Omega0 = 3.7 rad/s: peak %.4f m\n", first.maxAbsUy(),
               below.maxAbsUy());
   EXPECT_TRUE(below.failure.empty()) << below.failure;
 }
 
 TEST(HubBeamSpinUp, RpimShapeParameter) {
-  const double ref = runHubBeam(seed001HubBeam(30e9, 20.0, HubBeamMethod::Fem, 40), kNewmark).amplitudeAfter(15.0);
+  const HubBeamScene sc = hubBeamScene("hub-beam-rpim-shape-parameter.yaml");  // RPIM 11, alpha_c 1
+  ASSERT_EQ(sc.hub.alphaC, 1.0);
+  const double ref = runHubBeam(withMethod(sc.hub, HubBeamMethod::Fem, 40), sc.dynamics).amplitudeAfter(15.0);
   for (double ac : {1.0, 2.0, 3.0, 4.0, 5.0, 7.0}) {
-    model::HubBeamDesc d = seed001HubBeam(30e9, 20.0, HubBeamMethod::Rpim, 11);
+    model::HubBeamDesc d = sc.hub;
     d.alphaC = ac;
     if (ac >= 5.0) {
       EXPECT_THROW(ffr::HubBeam{d}, ffr::SingularMomentMatrix) << "alpha_c " << ac;
       std::printf("alpha_c %.0f: refused (singular moment matrix)\n", ac);
       continue;
     }
-    const double e = runHubBeam(d, kNewmark).amplitudeAfter(15.0) / ref - 1;
+    const double e = runHubBeam(d, sc.dynamics).amplitudeAfter(15.0) / ref - 1;
     std::printf("alpha_c %.0f: amplitude error %+.3f %%\n", ac, 100 * e);
     if (ac == 1.0) EXPECT_GT(std::abs(e), 3e-2);
     else EXPECT_LT(std::abs(e), 5e-3);
@@ -135,14 +137,15 @@ TEST(HubBeamSpinUp, RpimShapeParameter) {
 }
 
 TEST(HubBeamFreeHub, EnergyAndAngularMomentumConverge) {
-  auto drift = [](double torque, double dt, double* energy, double* momentum) {
-    model::HubBeamDesc d = seed001HubBeam(70e9, 0.0, HubBeamMethod::Fem, 6);
-    d.driven = false;
-    d.hubInertia = 200.0;
-    d.initialRate = 2.0;
+  const HubBeamScene sc = hubBeamScene("hub-beam-free-hub.yaml");  // FEM 6, J_oh 200, 2 rad/s, 500 N m
+  ASSERT_FALSE(sc.hub.driven);
+  auto drift = [&](double torque, double dt, double* energy, double* momentum) {
+    model::HubBeamDesc d = sc.hub;
     d.torque.kind = model::TimeFunction::Kind::Constant;
     d.torque.value = torque;
-    const TipSeries s = runHubBeam(d, fixedStep(Integrator::Newmark, dt, 2.0), 1, true);
+    model::DynamicsDesc dyn = sc.dynamics;
+    dyn.dt = dt;
+    const TipSeries s = runHubBeam(d, dyn, 1, true);
     EXPECT_TRUE(s.failure.empty()) << s.failure;
     const ffr::HubBeamStep& a = s.history.front();
     *energy = *momentum = 0.0;
@@ -172,7 +175,7 @@ TEST(HubBeamFreeHub, EnergyAndAngularMomentumConverge) {
 }
 
 TEST(HubBeamIntegrators, EverySchemeConvergesToOneTip) {
-  const model::HubBeamDesc d = seed001HubBeam(70e9, 4.0, HubBeamMethod::AssumedModes, 3);
+  const model::HubBeamDesc d = hubBeamScene("hub-beam-spin-up-modes.yaml").hub;  // AMM 3 + 3
   const double tEnd = 3.0;
   const TipSeries ref = runHubBeam(d, fixedStep(Integrator::Newmark, 1e-5, tEnd));
   const double y = ref.uy.back();
@@ -213,13 +216,8 @@ TEST(HubBeamIntegrators, EverySchemeConvergesToOneTip) {
 // A regression between two implementations of one method, not a verification; the methods are
 // verified above (rates, invariants, ANCF).
 TEST(HubBeamIntegrators, DenseLoopFollowsPetscTsForEveryFixedStepScheme) {
-  model::HubBeamDesc free = seed001HubBeam(70e9, 0.0, HubBeamMethod::Fem, 6);
-  free.driven = false;
-  free.hubInertia = 200.0;
-  free.initialRate = 2.0;
-  free.torque.kind = model::TimeFunction::Kind::Constant;
-  free.torque.value = 500.0;
-  const model::HubBeamDesc driven = seed001HubBeam(70e9, 4.0, HubBeamMethod::AssumedModes, 3);
+  const model::HubBeamDesc free = hubBeamScene("hub-beam-free-hub.yaml").hub;  // FEM 6, 500 N m
+  const model::HubBeamDesc driven = hubBeamScene("hub-beam-spin-up-modes.yaml").hub;  // AMM 3 + 3
   struct Case { Integrator i; int bdfOrder; double dt; const char* name; };
   for (const model::HubBeamDesc& d : {driven, free}) {
     const double h = 0.3 / ffr::HubBeam(d).highestFrequency();  // explicit schemes: stable for ABM4
