@@ -4,10 +4,12 @@
 // the error of the residual amplitude after the spin-up (seed 001's measure) and of the whole tip
 // history against a converged reference (FEM 40 elements, Newmark dt = 0.5 ms), and the wall time.
 // One JSON line per run; drivers/plot/strand_plot.py charts error against wall time.
-// Options: -omega W, -E E, -t_end T (default 20 s).
+// Options: -omega W, -E E, -t_end T (default 20 s), -scheme NAME (only that integrator).
 #include <petscsys.h>
 
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "support/HubBeamRuns.hpp"
 
@@ -22,6 +24,8 @@ int main(int argc, char** argv) {
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-omega", &omega, nullptr));
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-E", &E, nullptr));
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-t_end", &tEnd, nullptr));
+  char only[32] = "";  // -scheme NAME: run only that scheme (Newmark, alpha0.9, BDF2, RK4, ABM4)
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-scheme", only, sizeof(only), nullptr));
   const TipSeries ref = runHubBeam(seed001HubBeam(E, omega, HubBeamMethod::Fem, 40),
                                    fixedStep(Integrator::Newmark, 5e-4, tEnd), 2);
   const double refAmp = ref.amplitudeAfter(15.0), peak = ref.maxAbsUy();
@@ -37,13 +41,19 @@ int main(int argc, char** argv) {
   for (const Disc& disc : discs)
     for (int size : disc.sizes)
       for (const Scheme& sc : schemes) {
+        if (only[0] && std::string(only) != sc.name) continue;
         model::HubBeamDesc d = seed001HubBeam(E, omega, disc.m, size);
         // implicit: 1 ms (seed 001's Newmark); explicit: a safe fraction of the stability limit,
         // from the highest frequency of the (non-rotating) model
         double dt = 1e-3;
         if (sc.i == Integrator::Rk4 || sc.i == Integrator::Abm4) {
           const double wmax = ffr::HubBeam(d).highestFrequency();
-          dt = std::min(1e-3, (sc.i == Integrator::Rk4 ? 2.0 : 0.3) / wmax);
+          // RK4: h omega_max = 2 (stable to 2.83). ABM4 is weakly unstable on undamped modes: a mode
+          // grows by exp(0.16 (h omega)^6) per step (AdamsBashforthMoulton.hpp), by
+          // exp(0.16 (h omega)^5 omega T) over the run; h omega = min(0.3, (10 / (0.16 omega T))^(1/5))
+          // keeps that below e^10, so round-off (1e-16) stays below 1e-11 of the motion
+          const double hwAbm = std::min(0.3, std::pow(10.0 / (0.16 * wmax * tEnd), 0.2));
+          dt = std::min(1e-3, (sc.i == Integrator::Rk4 ? 2.0 : hwAbm) / wmax);
           dt = tEnd / std::ceil(tEnd / dt);
           if (tEnd / dt > 2e6) continue;  // fine models: explicit steps too many for a study (see docs)
         }
