@@ -360,6 +360,13 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
     PetscCallAbort(dofs.comm(), VecGetLocalSize(xl, &nLocal));
     PetscCallAbort(dofs.comm(), VecGhostRestoreLocalForm(_xWork, &xl));
   }
+  {
+    PetscInt owned;
+    PetscCallAbort(dofs.comm(), VecGetLocalSize(_xWork, &owned));
+    int ghosts = nLocal > owned ? 1 : 0, any = 0;
+    MPI_Allreduce(&ghosts, &any, 1, MPI_INT, MPI_MAX, dofs.comm());
+    _haveGhosts = any != 0;
+  }
   _fixedLocal.assign(nLocal, 0);
   _q0Local.assign(nLocal, 0.0);
   _nodalForceOwned.assign(dofs.ownedBlocks() * bs, 0.0);
@@ -458,8 +465,7 @@ PetscErrorCode Assembler::constraintVelocityTerm(Vec X, Vec V, Vec R) {
   _multibody->velocityTerm(x, v, r);
   PetscCall(VecRestoreArray(rl, &r));
   PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
-  PetscCall(VecGhostUpdateBegin(_rWork, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecGhostUpdateEnd(_rWork, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(addGhostsToOwners(_rWork));
   PetscCall(endLocal(_xWork, &xl, &x));
   PetscCall(endLocal(_vWork, &vl, &v));
   PetscCall(VecCopy(_rWork, R));
@@ -487,10 +493,27 @@ PetscErrorCode Assembler::constraintViolation(Vec X, Vec V, PetscReal* position,
 PetscErrorCode Assembler::beginLocal(Vec from, Vec work, Vec* local, const PetscScalar** a) {
   PetscFunctionBeginUser;
   PetscCall(VecCopy(from, work));
-  PetscCall(VecGhostUpdateBegin(work, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(work, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(updateGhosts(work));
   PetscCall(VecGhostGetLocalForm(work, local));
   PetscCall(VecGetArrayRead(*local, a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::updateGhosts(Vec work) {
+  PetscFunctionBeginUser;
+  if (_haveGhosts) {
+    PetscCall(VecGhostUpdateBegin(work, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGhostUpdateEnd(work, INSERT_VALUES, SCATTER_FORWARD));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::addGhostsToOwners(Vec work) {
+  PetscFunctionBeginUser;
+  if (_haveGhosts) {
+    PetscCall(VecGhostUpdateBegin(work, ADD_VALUES, SCATTER_REVERSE));
+    PetscCall(VecGhostUpdateEnd(work, ADD_VALUES, SCATTER_REVERSE));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -530,8 +553,7 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
   PetscCallCXX(_multibody->residual(x, _constraintScale, r));
   PetscCall(VecRestoreArray(rl, &r));
   PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
-  PetscCall(VecGhostUpdateBegin(_rWork, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecGhostUpdateEnd(_rWork, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(addGhostsToOwners(_rWork));
   // owned rows: nodal forces and supports
   PetscCall(VecGetArray(_rWork, &r));
   const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();

@@ -106,6 +106,10 @@ private:
   // local form (read only); endLocal restores it.
   PetscErrorCode beginLocal(Vec from, Vec work, Vec* local, const PetscScalar** a);
   PetscErrorCode endLocal(Vec work, Vec* local, const PetscScalar** a);
+  // Owned values to the ghosts, and the ghosts' contributions added to their owners; no-ops when no
+  // rank has ghosts (one rank): a scatter costs 1.4 us, 8 per step of a small dynamic run.
+  PetscErrorCode updateGhosts(Vec work);
+  PetscErrorCode addGhostsToOwners(Vec work);
   PetscErrorCode assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R, SupportRows rows);
   PetscErrorCode assembleWithSupportDiagonal(Mat J) const;
 
@@ -117,6 +121,7 @@ private:
   std::vector<char> _multiplierOwned;       // per owned DOF
   std::vector<double> _v0Owned;             // initial velocities, owned DOFs
   Vec _xWork = nullptr, _rWork = nullptr, _vWork = nullptr;  // ghosted work vectors
+  bool _haveGhosts = true;  // on some rank
   std::vector<char> _fixedLocal;           // per DOF of the ghosted local form
   std::vector<char> _noneFixed;            // all zero, same size
   struct MovedBlock {
