@@ -84,10 +84,7 @@ struct Outcome {
 Outcome integrate(MPI_Comm comm, const model::SceneDescription& scene, const model::DynamicsDesc& d) {
   solvers::Problem p(comm, scene);
   Vec X, V;
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &V));
-  PetscCallAbort(comm, p.assembler().initialState(X));
-  PetscCallAbort(comm, p.assembler().initialVelocity(V));
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
   solvers::Dynamics dyn(p.assembler(), d);
   PetscCallAbort(comm, dyn.setFromOptions());
   Outcome o;

@@ -15,16 +15,14 @@ namespace strand::ffr {
 namespace {
 
 // Newton on G(x) = 0 with the TS path's SNES settings: converged when |G| <= atol or |G| <= 1e-10
-// g0, g0 = |G(x0)| unless given, at least one step, at most 25. Returns the iterations; *converged
-// and *norm report.
+// |G(x0)|, at least one step, at most 25. Returns the iterations; *converged and *norm report.
 template <class Residual, class Jacobian>
-int newton(Eigen::VectorXd& x, Residual&& residual, Jacobian&& jacobian, double atol, bool* converged, double* norm,
-           double g0 = -1.0) {
+int newton(Eigen::VectorXd& x, Residual&& residual, Jacobian&& jacobian, double atol, bool* converged, double* norm) {
   Eigen::VectorXd G;
   Eigen::MatrixXd J;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
   residual(x, G);
-  if (g0 < 0) g0 = G.norm();
+  const double g0 = G.norm();
   *converged = false;
   int its = 0;
   while (its < 25 && !*converged) {
@@ -140,7 +138,7 @@ PetscErrorCode HubBeamDynamics::runDenseAlpha() {
     update(q1);
     q = q1, v = v1, a = a1, A = A1, t = t1;
     record(step, t, q, v, its, 0, &A);
-    _stop = divergence(t, step, q, v);
+    _stop = divergence(t, step, q.allFinite() && v.allFinite(), _last.obs);  // recorded just above
     if (!_stop.empty()) break;
   }
   PetscFunctionReturn(0);
@@ -254,7 +252,7 @@ PetscErrorCode HubBeamDynamics::runDenseBdf() {
     t = t1;
     const Eigen::VectorXd a = ydot.tail(n);
     record(step, t, y.head(n), y.tail(n), its, 0, &a);
-    _stop = divergence(t, step, y.head(n), y.tail(n));
+    _stop = divergence(t, step, y.allFinite(), _last.obs);  // recorded just above
     if (!_stop.empty()) break;
   }
   PetscFunctionReturn(0);
@@ -299,7 +297,7 @@ PetscErrorCode HubBeamDynamics::runDenseExplicit() {
     if (hist.size() > 4) hist.pop_back();
     an = fn.tail(n);
     record(step, t, y.head(n), y.tail(n), 0, 0, &an);
-    _stop = divergence(t, step, y.head(n), y.tail(n));
+    _stop = divergence(t, step, y.allFinite(), _last.obs);  // recorded just above
     if (!_stop.empty()) break;
   }
   PetscFunctionReturn(0);

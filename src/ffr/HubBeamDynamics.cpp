@@ -296,16 +296,16 @@ PetscErrorCode HubBeamDynamics::checkState(TS ts) {
   PetscCall(TSGetStepNumber(ts, &step));
   Eigen::VectorXd q, v;
   PetscCall(stateOf(X, q, v));
-  _stop = divergence(t, static_cast<int>(step), q, v);
+  // the TS calls this before its monitor: the step's observation is not recorded yet (the tip and
+  // the hub's rate do not depend on the acceleration)
+  const HubBeam::Observation o = _model.observe(t, q, v, Eigen::VectorXd::Zero(_n));
+  _stop = divergence(t, static_cast<int>(step), q.allFinite() && v.allFinite(), o);
   if (!_stop.empty()) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
   PetscFunctionReturn(0);
 }
 
-std::string HubBeamDynamics::divergence(double t, int step, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
-  const Eigen::VectorXd a = Eigen::VectorXd::Zero(_n);
-  const HubBeam::Observation o = _model.observe(t, q, v, a);
+std::string HubBeamDynamics::divergence(double t, int step, bool finite, const HubBeam::Observation& o) const {
   const double L = _model.desc().length;
-  const bool finite = q.allFinite() && v.allFinite();
   const double tip = std::hypot(o.tipUx, o.tipUy);
   if (finite && tip <= kDeformationLimit * L) return {};
   std::ostringstream m;
@@ -329,12 +329,12 @@ PetscErrorCode HubBeamDynamics::run(const StepCallback& onStep, std::string* fai
   _lastIterations = 0;
   _stop.clear();
   failure->clear();
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(_n), v = initialRate(), a;
   if (_dense) {
     PetscCall(runDense());
     *failure = _stop;
     PetscFunctionReturn(0);
   }
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(_n), v = initialRate(), a;
   PetscCall(TSSetTime(_ts, 0.0));
   PetscCall(TSSetStepNumber(_ts, 0));
   PetscCall(TSSetTimeStep(_ts, _desc.dt));

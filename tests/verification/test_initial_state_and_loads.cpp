@@ -90,10 +90,7 @@ Trajectory run(const model::SceneDescription& sc, const model::DynamicsDesc& d) 
   MPI_Comm comm = PETSC_COMM_WORLD;
   solvers::Problem p(comm, sc);
   Vec X, V;
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &V));
-  PetscCallAbort(comm, p.assembler().initialState(X));
-  PetscCallAbort(comm, p.assembler().initialVelocity(V));
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
   Trajectory r;
   r.start = observe(p, X, V);
   solvers::Dynamics dyn(p.assembler(), d);

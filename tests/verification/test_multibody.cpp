@@ -59,10 +59,7 @@ ChainRun runChain(MPI_Comm comm, int links, const model::DynamicsDesc& d, double
   sc.dynamics = d;
   solvers::Problem p(comm, sc);
   Vec X, V;
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &V));
-  PetscCallAbort(comm, p.assembler().initialState(X));
-  PetscCallAbort(comm, p.assembler().initialVelocity(V));
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
   ChainRun out;
   solvers::Dynamics dyn(p.assembler(), d);
   solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& s, Vec, Vec) -> PetscErrorCode {

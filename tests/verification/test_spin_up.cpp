@@ -223,10 +223,7 @@ TEST(SpinUp, ClampJointOnADrivenHubStretchesLikeTheRodOnEveryMesh) {
     d.dt = dt;
     d.tEnd = tEnd;
     Vec X, V;
-    PetscCallAbort(comm, p.dofs().createVector(&X));
-    PetscCallAbort(comm, VecDuplicate(X, &V));
-    PetscCallAbort(comm, p.assembler().initialState(X));
-    PetscCallAbort(comm, p.assembler().initialVelocity(V));
+    PetscCallAbort(comm, p.createInitialState(&X, &V));
     solvers::Dynamics dyn(p.assembler(), d);
     const model::Joint& joint = p.model().joints()[0];
     double stretch = 0.0, radial = 0.0, lagMin = 1e300, lagMax = -1e300, gmax = 0.0;

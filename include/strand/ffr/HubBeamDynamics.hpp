@@ -79,7 +79,8 @@ private:
   // the step's outputs and the callback; the acceleration is computed unless `known`
   void record(int step, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, int newton, int rejected,
               const Eigen::VectorXd* known = nullptr);
-  std::string divergence(double t, int step, const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
+  // why the run stops at this state (finite: q and v are; o: its observation), or empty
+  std::string divergence(double t, int step, bool finite, const HubBeam::Observation& o) const;
   void acceleration(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, Eigen::VectorXd& a) const;
 
   const HubBeam& _model;

@@ -17,6 +17,16 @@ public:
   const model::Model& model() const { return _model; }
   const model::DofMap& dofs() const { return _dofs; }
   assembly::Assembler& assembler() { return _asm; }
+  // New vectors X, V (the caller destroys them) at the scene's initial state: the displacement from
+  // the reference shape and the initial velocities (Assembler::initialState, initialVelocity).
+  PetscErrorCode createInitialState(Vec* X, Vec* V) {
+    PetscFunctionBeginUser;
+    PetscCall(_dofs.createVector(X));
+    PetscCall(VecDuplicate(*X, V));
+    PetscCall(_asm.initialState(*X));
+    PetscCall(_asm.initialVelocity(*V));
+    PetscFunctionReturn(0);
+  }
   // Angular speed of the rotating frame for the next solves (sweeps).
   void setAngularSpeed(double omega) { _model.setAngularSpeed(omega); }
 
