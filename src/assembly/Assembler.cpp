@@ -472,6 +472,45 @@ PetscErrorCode Assembler::constraintVelocityTerm(Vec X, Vec V, Vec R) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::constraintGradientProduct(Vec X, Vec W, Vec R) {
+  PetscFunctionBeginUser;
+  Vec xl, wl, rl;
+  const PetscScalar *x, *w;
+  PetscScalar* r;
+  PetscCall(beginLocal(X, _xWork, &xl, &x));
+  PetscCall(beginLocal(W, _vWork, &wl, &w));
+  PetscCall(VecGhostGetLocalForm(_rWork, &rl));
+  PetscCall(VecSet(rl, 0.0));
+  PetscCall(VecGetArray(rl, &r));
+  _multibody->gradientProduct(x, w, _constraintScale, r);
+  PetscCall(VecRestoreArray(rl, &r));
+  PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
+  PetscCall(addGhostsToOwners(_rWork));
+  PetscCall(endLocal(_xWork, &xl, &x));
+  PetscCall(endLocal(_vWork, &wl, &w));
+  PetscCall(VecCopy(_rWork, R));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::constraintGradientMatrices(Vec X, Vec W, Mat C, Mat dC) {
+  PetscFunctionBeginUser;
+  Vec xl, wl;
+  const PetscScalar *x, *w;
+  PetscCall(beginLocal(X, _xWork, &xl, &x));
+  PetscCall(beginLocal(W, _vWork, &wl, &w));
+  for (Mat A : {C, dC})
+    if (A) PetscCall(MatZeroEntries(A));
+  PetscCall(_multibody->gradientProductJacobian(x, w, _constraintScale, C, dC, _fixedLocal));
+  PetscCall(endLocal(_xWork, &xl, &x));
+  PetscCall(endLocal(_vWork, &wl, &w));
+  for (Mat A : {C, dC})
+    if (A) {
+      PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::constraintViolation(Vec X, Vec V, PetscReal* position, PetscReal* velocity) {
   PetscFunctionBeginUser;
   Vec xl, vl;

@@ -143,6 +143,82 @@ void Multibody::velocityTerm(const double* x, const double* v, double* r) const 
   }
 }
 
+void Multibody::gradientProduct(const double* x, const double* w, double scale, double* r) const {
+  const int D = _model.dim();
+  for (int k = 0; k < static_cast<int>(_dofs.localCouplings().size()); ++k) {
+    if (!isJoint(k)) continue;
+    const JointState s = state(k, x);
+    for (int e = 0; e < s.joint->count; ++e) {
+      const double we = w[s.lb[e / D] * D + e % D];  // the GGL multiplier of equation e
+      double gw = 0.0;
+      for (int c = 0; c < s.n; ++c) {
+        const PetscInt i = s.qb[c / D] * D + c % D;
+        gw += s.G[e * s.n + c] * w[i];
+        r[i] += scale * s.G[e * s.n + c] * we;
+      }
+      r[s.lb[e / D] * D + e % D] += scale * gw;
+    }
+  }
+}
+
+PetscErrorCode Multibody::addJointMatrix(int k, double* Ke, Mat J, const std::vector<char>& fixed) const {
+  PetscFunctionBeginUser;
+  const int D = _model.dim();
+  const model::Coupling& c = _model.couplings()[_dofs.localCouplings()[k]];
+  const PetscInt off = _dofs.couplingOffset()[k];
+  const PetscInt* lb = &_dofs.couplingLocalBlocks()[off];
+  const int nb = static_cast<int>(c.blocks.size()), N = nb * D;
+  for (int a = 0; a < nb; ++a)
+    for (int i = 0; i < D; ++i)
+      if (fixed[lb[a] * D + i])
+        for (int m = 0; m < N; ++m) Ke[(a * D + i) * N + m] = Ke[m * N + a * D + i] = 0.0;
+  PetscCall(MatSetValuesBlocked(J, nb, &_dofs.couplingGlobalBlocks()[off], nb, &_dofs.couplingGlobalBlocks()[off], Ke,
+                                ADD_VALUES));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Multibody::gradientProductJacobian(const double* x, const double* w, double scale, Mat C, Mat dC,
+                                                  const std::vector<char>& fixed) const {
+  PetscFunctionBeginUser;
+  const int D = _model.dim();
+  double Ke[(kMaxBlocks * 3) * (kMaxBlocks * 3)];
+  for (int k = 0; k < static_cast<int>(_dofs.localCouplings().size()); ++k) {
+    if (!isJoint(k)) continue;
+    const JointState s = state(k, x);
+    const int N = static_cast<int>(_model.couplings()[_dofs.localCouplings()[k]].blocks.size()) * D;
+    const int L = N - s.n;  // multiplier coordinates come first
+    if (C) {
+      std::fill(Ke, Ke + N * N, 0.0);
+      for (int e = 0; e < s.joint->count; ++e)
+        for (int col = 0; col < s.n; ++col) Ke[e * N + L + col] = Ke[(L + col) * N + e] = scale * s.G[e * s.n + col];
+      PetscCall(addJointMatrix(k, Ke, C, fixed));
+    }
+    if (!dC) continue;
+    std::fill(Ke, Ke + N * N, 0.0);
+    double we[JointState::kMaxEquations], wq[kMaxJointCoordinates];
+    for (int e = 0; e < s.joint->count; ++e) we[e] = w[s.lb[e / D] * D + e % D];
+    for (int c = 0; c < s.n; ++c) wq[c] = w[s.qb[c / D] * D + c % D];
+    int row = 0;
+    for (const ConstraintEq& eq : s.joint->equations) {
+      for (int i = 0; i < equations(eq, D); ++i, ++row) {
+        double unit[3] = {0.0, 0.0, 0.0}, H[kMaxJointCoordinates * kMaxJointCoordinates] = {};
+        unit[i] = 1.0;
+        addHessian(eq, s.q, s.n, unit, 1.0, H, D);  // d^2 g_row / dq^2
+        for (int a = 0; a < s.n; ++a) {
+          double Hw = 0.0;
+          for (int b = 0; b < s.n; ++b) {
+            Hw += H[a * s.n + b] * wq[b];
+            Ke[(L + a) * N + L + b] += scale * we[row] * H[a * s.n + b];  // s H(w): coordinate rows
+          }
+          Ke[row * N + L + a] += scale * Hw;  // d(s G w)/dq: multiplier rows
+        }
+      }
+    }
+    PetscCall(addJointMatrix(k, Ke, dC, fixed));
+  }
+  PetscFunctionReturn(0);
+}
+
 void Multibody::violation(const double* x, const double* v, double* position, double* velocity) const {
   const int D = _model.dim();
   *position = *velocity = 0.0;

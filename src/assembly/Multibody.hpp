@@ -33,6 +33,15 @@ public:
   // r (multiplier rows) += v^T d^2 g_k/dq^2 v: the velocity term of the acceleration-level
   // constraint G a + (dG/dq v) v = 0.
   void velocityTerm(const double* x, const double* v, double* r) const;
+  // The GGL stabilization (solvers/ConstrainedStateSpace.hpp) with a second vector w: r += s G^T w on the joint's
+  // coordinate rows (w's multiplier entries are the GGL multipliers) and s G w on its multiplier
+  // rows (w's coordinate entries are velocities); all columns, supports included.
+  void gradientProduct(const double* x, const double* w, double scale, double* r) const;
+  // The Newton matrices of that product: C += s G^T, s G (as jacobian(gradientsOnly)), and
+  // dC += d(r)/dx = s H(w) on coordinates and s (H_k w)^T on multiplier rows (fixed rows and columns
+  // left out; either matrix may be null).
+  PetscErrorCode gradientProductJacobian(const double* x, const double* w, double scale, Mat C, Mat dC,
+                                         const std::vector<char>& fixed) const;
   // Largest |g| and |G v| over this rank's joints.
   void violation(const double* x, const double* v, double* position, double* velocity) const;
 
@@ -49,6 +58,9 @@ private:
   };
   JointState state(int localCoupling, const double* x) const;
   bool isJoint(int localCoupling) const;
+  // Adds a joint's element matrix (N x N over its blocks, multipliers first) with fixed rows and
+  // columns zeroed.
+  PetscErrorCode addJointMatrix(int localCoupling, double* Ke, Mat J, const std::vector<char>& fixed) const;
   void rigidMass(int body, double s, double* Ke) const;
 
   const model::Model& _model;

@@ -338,6 +338,8 @@ const Choice<model::Integrator> kIntegrators[] = {{"generalized_alpha", model::I
                                                   {"rk4", model::Integrator::Rk4},
                                                   {"abm4", model::Integrator::Abm4}};
 
+const Choice<model::DynamicsDesc::ConstraintForm> kConstraintForms[] = {
+    {"ggl", model::DynamicsDesc::ConstraintForm::Ggl}, {"index3", model::DynamicsDesc::ConstraintForm::Index3}};
 const Choice<model::JointType> kJointTypes[] = {{"pin", model::JointType::Pin},
                                                  {"revolute", model::JointType::Pin},
                                                  {"spherical", model::JointType::Pin},
@@ -800,8 +802,8 @@ private:
   }
 
   void readDynamics(const Field& f) {
-    f.expectMap({"integrator", "rho_inf", "hht_alpha", "bdf_order", "adaptive", "rtol", "atol", "dt", "t_end",
-                 "output_every", "dt_out"});
+    f.expectMap({"integrator", "rho_inf", "hht_alpha", "bdf_order", "adaptive", "rtol", "atol", "constraint_form", "dt",
+                 "t_end", "output_every", "dt_out"});
     model::DynamicsDesc& d = scene_.dynamics;
     d.mark = f.mark();
     const Field integrator = f.child("integrator");
@@ -830,12 +832,14 @@ private:
         if (!d.adaptive) t.fail("only used with integrator: bdf and adaptive: true");
         (std::string(key) == "rtol" ? d.rtol : d.atol) = requirePositive(t);
       }
-    if (model::isFirstOrder(d.integrator) && !scene_.joints.empty())
-      integrator.fail(d.integrator == model::Integrator::Bdf
-                          ? "bdf integrates scenes without joints (no stabilized index-2 form in this version); use "
-                            "generalized_alpha with rho_inf <= 0.9 for scenes with joints"
-                          : "explicit integrators (rk4, abm4) take problems without joints (no Lagrange multipliers); "
-                            "use generalized_alpha with rho_inf <= 0.9 for scenes with joints");
+    if (model::isExplicit(d.integrator) && !scene_.joints.empty())
+      integrator.fail("explicit integrators (rk4, abm4) take problems without joints (no Lagrange multipliers); "
+                      "use generalized_alpha with rho_inf <= 0.9 or bdf for scenes with joints");
+    if (const Field c = f.child("constraint_form"); c.present()) {
+      if (d.integrator != model::Integrator::Bdf || scene_.joints.empty())
+        c.fail("only used by integrator: bdf in a scene with joints");
+      d.constraintForm = pick(c, "constraint form", kConstraintForms).value;
+    }
     d.dt = requirePositive(f.child("dt"));
     d.tEnd = requirePositive(f.child("t_end"));
     if (d.dt > d.tEnd) f.child("dt").fail("larger than t_end");

@@ -52,8 +52,13 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, TSCreate(comm, &_ts));
   PetscCallAbort(comm, TSSetOptionsPrefix(_ts, "dyn_"));
   if (_firstOrder) {
-    PetscCallAbort(comm, createMassSolver(_fext, &_massSolver));
+    // the explicit form and the support forces need the factored mass; with joints (BDF only) the
+    // multipliers come from the Newton system instead
+    if (!_constrained) PetscCallAbort(comm, createMassSolver(_fext, &_massSolver));
     _space = std::make_unique<StateSpace>(assembler, _M, _supported, _massSolver, _damped);
+    if (_constrained)
+      _constrainedSpace = std::make_unique<ConstrainedStateSpace>(assembler, *_space, _supported, _multipliers, _damped,
+                                                                  desc.constraintForm);
     PetscCallAbort(comm, _space->createState(&_Y));
     if (desc.integrator == model::Integrator::Bdf) {
       PetscCallAbort(comm, TSSetType(_ts, TSBDF));
@@ -96,11 +101,17 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
   PetscCallAbort(comm, setDirectSolverDefaults(ksp, comm, _constrained));
-  if (_firstOrder) PetscCallAbort(comm, _space->setImplicit(_ts));  // the exact Schur-complement solve
+  if (_constrainedSpace) {  // the assembled 2n x 2n Newton matrix, by the direct solver above
+    PetscCallAbort(comm, _constrainedSpace->setImplicit(_ts));
+    if (desc.adaptive) PetscCallAbort(comm, _constrainedSpace->setTolerances(_ts, desc.atol, desc.rtol));
+  } else if (_firstOrder) {
+    PetscCallAbort(comm, _space->setImplicit(_ts));  // the exact Schur-complement solve
+  }
 }
 
 Dynamics::~Dynamics() {
   TSDestroy(&_ts);
+  _constrainedSpace.reset();
   _space.reset();
   KSPDestroy(&_massSolver);
   VecDestroy(&_Y);
@@ -417,6 +428,15 @@ PetscErrorCode Dynamics::postStep(TS ts) {
     PetscCall(self->_space->prescribe(t, Y));
   }
   if (self->_blowUp > 0.0) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
+  if (self->_desc.adaptive && !self->_explicit) {  // a step at the controller's floor: it has collapsed
+    PetscReal t;
+    PetscCall(TSGetTime(ts, &t));
+    const double taken = t - self->_last.time;  // the monitor has not seen this step yet
+    if (taken <= (1.0 + 1e-6) * kMinStepFraction * self->_desc.dt) {
+      self->_collapsedStep = taken;
+      PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
+    }
+  }
   if (self->_stopCheck) {  // every rank must stop at the same step
     int stop = self->_stopCheck() ? 1 : 0;
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, PetscObjectComm(reinterpret_cast<PetscObject>(ts))));
@@ -432,8 +452,10 @@ PetscErrorCode Dynamics::postStep(TS ts) {
 
 PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::string* failure) {
   PetscFunctionBeginUser;
-  PetscCheck(!(_firstOrder && _constrained), _asm.dofs().comm(), PETSC_ERR_SUP,
-             "%s: joints (Lagrange multipliers) need integrator generalized_alpha", _schemeName.c_str());
+  PetscCheck(!(_explicit && _constrained), _asm.dofs().comm(), PETSC_ERR_SUP,
+             "%s: joints (Lagrange multipliers) need an implicit integrator (generalized_alpha, bdf)", _schemeName.c_str());
+  PetscCheck(!(_firstOrder && _constrained && _moving), _asm.dofs().comm(), PETSC_ERR_SUP,
+             "%s: joints on a turning hub (prescribed motion) need integrator generalized_alpha", _schemeName.c_str());
   failure->clear();
   _onStep = &onStep;
   _stopped = false;
@@ -442,7 +464,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
   PetscCall(TSSetStepNumber(_ts, _resuming ? _resume.step : 0));
   PetscCall(TSSetTimeStep(_ts, _desc.dt));
   _reactionValid = false;
-  _blowUp = _energyScale = 0.0;
+  _blowUp = _energyScale = _collapsedStep = 0.0;
   _overSteps = 0;
   if (_resuming) {  // the energy monitor continues its sums
     _last = _resume.last;
@@ -459,6 +481,16 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     if (_explicit) {
       PetscCall(VecDuplicate(X, &X0));
       PetscCall(VecCopy(X, X0));
+    }
+    if (_constrained) {
+      // GGL: s = 1 / dt^2 (the first step's, then fixed: lambda~ = lambda / s is a state variable in
+      // the BDF history), the order of sigma^2 M in the Newton matrix. Index 3 (every unknown in the
+      // error norm): s = 1, the multipliers in newtons as a user would weigh them. Consistent start
+      // as for index 3: velocities projected onto G v = 0, lambda~0 from the acceleration-level
+      // system, mu~0 = 0.
+      const bool ggl = _desc.constraintForm == model::DynamicsDesc::ConstraintForm::Ggl;
+      _asm.setConstraintScale(ggl ? 1.0 / (_desc.dt * _desc.dt) : 1.0);
+      if (!_resuming) PetscCall(initialAcceleration(X, V, _a0));
     }
     PetscCall(_space->pack(X, V, _Y));
     PetscCall(TSSetSolution(_ts, _Y));
@@ -496,6 +528,9 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
       msg << "energy was created: the balance grew by " << at.energy() - _e0 << " J, more than half the energy the "
           << "system has held, and kept growing (" << grown << " J at t = " << _last.time
           << " s): the solution has blown up. ";
+    } else if (_collapsedStep > 0.0) {
+      msg << "the adaptive step collapsed to " << _collapsedStep << " s, at or below the controller's floor ("
+          << kMinStepFraction << " of the first step): the local error estimate does not fall with the step. ";
     } else if (_explicit) {
       msg << "the step was rejected (" << TSConvergedReasons[reason] << "). ";
     } else {

@@ -46,7 +46,7 @@ PetscErrorCode configureTimeStepping(TS ts, const model::DynamicsDesc& desc) {
   PetscCall(TSAdaptSetType(adapt, adaptive ? TSADAPTBASIC : TSADAPTNONE));
   if (adaptive) {
     PetscCall(TSSetTolerances(ts, desc.atol, nullptr, desc.rtol, nullptr));
-    PetscCall(TSAdaptSetStepLimits(adapt, 1e-10 * desc.dt, desc.tEnd));
+    PetscCall(TSAdaptSetStepLimits(adapt, kMinStepFraction * desc.dt, desc.tEnd));
   }
   PetscFunctionReturn(0);
 }

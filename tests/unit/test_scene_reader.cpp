@@ -877,14 +877,21 @@ TEST(SceneReader, RigidBodiesAndJoints) {
                         "phi is listed in 'fixed'"));
   EXPECT_TRUE(failsWith(edit(driven, "analysis: dynamic", "analysis: static"), 3, "rigid_bodies[0].rotation",
                         "a driven rotation needs analysis: dynamic"));
-  // the first-order integrators take no joints (no multipliers); the message says what to use
+  // the explicit integrators take no joints (no multipliers); the message says what to use; bdf
+  // takes them on the GGL form or (constraint_form: index3) the plain index-3 form
   const std::string pinned =
       "analysis: dynamic\ndimension: 2\nrigid_bodies: [{name: rod, mass: 1, inertia: 0.1, position: [0.5, 0]}]\n"
       "joints: [{type: pin, a: {body: rod, point: [-0.5, 0]}, b: {ground: [0, 0]}}]\n"
       "dynamics: {integrator: rk4, dt: 1e-3, t_end: 1}\n";  // line 5
   EXPECT_TRUE(failsWith(pinned, 5, "dynamics.integrator", "explicit integrators (rk4, abm4) take problems without joints"));
-  EXPECT_TRUE(failsWith(edit(pinned, "rk4", "bdf"), 5, "dynamics.integrator",
-                        "bdf integrates scenes without joints (no stabilized index-2 form in this version)"));
+  EXPECT_EQ(parseScene(edit(pinned, "rk4", "bdf"), "p.yaml").dynamics.constraintForm,
+            model::DynamicsDesc::ConstraintForm::Ggl);
+  EXPECT_EQ(parseScene(edit(pinned, "rk4", "bdf, constraint_form: index3"), "p.yaml").dynamics.constraintForm,
+            model::DynamicsDesc::ConstraintForm::Index3);
+  EXPECT_TRUE(failsWith(edit(pinned, "rk4", "bdf, constraint_form: index2"), 5, "dynamics.constraint_form",
+                        "ggl"));
+  EXPECT_TRUE(failsWith(edit(pinned, "rk4", "generalized_alpha, constraint_form: ggl"), 5, "dynamics.constraint_form",
+                        "only used by integrator: bdf in a scene with joints"));
   EXPECT_TRUE(failsWith("analysis: dynamic\ndimension: 3\nrigid_bodies: [{name: rod, mass: 1, inertia: 0.1, "
                         "position: [0.5, 0, 0]}]\ndynamics: {dt: 1e-3, t_end: 1}\n",
                         3, "rigid_bodies[0]", "rigid bodies are planar in this version"));

@@ -11,7 +11,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "strand/solvers/ConstrainedStateSpace.hpp"
 #include "strand/solvers/StateSpace.hpp"
+#include "support/Pendulum.hpp"
 #include "support/Scenes.hpp"
 
 using namespace strand;
@@ -179,4 +181,113 @@ TEST(StateSpace, ExplicitRateSolvesTheImplicitResidual) {
   VecDestroy(&Y);
   VecDestroy(&G);
   VecDestroy(&F);
+}
+
+// BDF with joints (solvers/ConstrainedStateSpace.hpp): a damped cable pinned to the ground at one
+// end and to a rigid bob at the other (no supports but the bob's unused slot), and a rigid 3-link
+// chain (only joint terms are nonlinear there, so the GGL terms H(mu~) and (H_k v)^T dominate the
+// remainder). Taylor test of the assembled 2n x 2n Newton matrix, both forms, with every unknown
+// perturbed (multipliers of both halves included): the remainder falls as e^2.
+TEST(ConstrainedStateSpace, NewtonMatrixPassesTheTaylorTestOnBothForms) {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  model::SceneDescription sc = flexiblePendulum(2e-3, 1e8, 4);
+  sc.supports.clear();
+  model::RigidBodyDesc bob;
+  bob.name = "bob";
+  bob.mass = 0.5;
+  bob.inertia = 2e-3;
+  bob.position = {1.1, 0, 0};
+  sc.rigidBodies.push_back(bob);
+  model::JointDesc root, tip;
+  root.a.kind = model::JointEndDesc::Kind::CableNode;
+  root.a.body = sc.bodies[0].name;
+  root.a.node = 0;
+  tip.a = root.a;
+  tip.a.node = -1;
+  tip.b.kind = model::JointEndDesc::Kind::RigidPoint;
+  tip.b.body = "bob";
+  tip.b.point = {-0.1, 0, 0};
+  sc.joints = {root, tip};
+  for (const model::SceneDescription& scene : {sc, rigidChain(3, 0.4, 0.3)})
+  for (auto form : {model::DynamicsDesc::ConstraintForm::Ggl, model::DynamicsDesc::ConstraintForm::Index3}) {
+    solvers::Problem p(comm, scene);
+    assembly::Assembler& a = p.assembler();
+    a.setConstraintScale(250.0);
+    Mat M;
+    Vec supported, multipliers;
+    PetscCallAbort(comm, p.dofs().createMatrix(&M, nullptr));
+    PetscCallAbort(comm, a.massMatrix(M, false));
+    PetscCallAbort(comm, MatCreateVecs(M, nullptr, &supported));
+    PetscCallAbort(comm, VecDuplicate(supported, &multipliers));
+    PetscCallAbort(comm, a.multiplierMask(multipliers));
+    IS free;
+    PetscCallAbort(comm, a.freeDofs(&free));
+    PetscCallAbort(comm, VecSet(supported, 1.0));
+    PetscCallAbort(comm, VecISSet(supported, free, 0.0));
+    PetscCallAbort(comm, ISDestroy(&free));
+    solvers::StateSpace space(a, M, supported, nullptr, true);
+    solvers::ConstrainedStateSpace cs(a, space, supported, multipliers, true, form);
+    auto random = [&](unsigned seed, double scaleU) {
+      Vec Y;
+      PetscCallAbort(comm, space.createState(&Y));
+      PetscRandom r;
+      PetscCallAbort(comm, PetscRandomCreate(comm, &r));
+      PetscCallAbort(comm, PetscRandomSetSeed(r, seed));
+      PetscCallAbort(comm, PetscRandomSeed(r));
+      PetscCallAbort(comm, VecSetRandom(Y, r));
+      PetscCallAbort(comm, PetscRandomDestroy(&r));
+      PetscCallAbort(comm, VecShift(Y, -0.5));
+      PetscScalar* y;
+      PetscInt n;
+      PetscCallAbort(comm, VecGetLocalSize(Y, &n));
+      PetscCallAbort(comm, VecGetArray(Y, &y));
+      for (PetscInt i = 0; i < n / 2; ++i) y[i] *= scaleU;
+      PetscCallAbort(comm, VecRestoreArray(Y, &y));
+      return Y;
+    };
+    const double t = 0.1, sigma = 1500.0;
+    Vec Y = random(7, 5e-2), Yd = random(11, 1.0), D = random(13, 1.0), F0, F1, JD;
+    {  // the supported entries are linear rows; leave them alone
+      Vec Xc, Vc;
+      PetscCallAbort(comm, VecDuplicate(supported, &Xc));
+      PetscCallAbort(comm, VecDuplicate(supported, &Vc));
+      PetscCallAbort(comm, space.unpack(D, Xc, Vc));
+      PetscCallAbort(comm, a.zeroSupportedRows(Xc));
+      PetscCallAbort(comm, a.zeroSupportedRows(Vc));
+      PetscCallAbort(comm, space.pack(Xc, Vc, D));
+      VecDestroy(&Xc);
+      VecDestroy(&Vc);
+    }
+    PetscCallAbort(comm, VecDuplicate(Y, &F0));
+    PetscCallAbort(comm, VecDuplicate(Y, &F1));
+    PetscCallAbort(comm, VecDuplicate(Y, &JD));
+    Mat J;
+    PetscCallAbort(comm, cs.residual(t, Y, Yd, F0));
+    PetscCallAbort(comm, cs.jacobian(t, Y, sigma, &J));
+    PetscCallAbort(comm, MatMult(J, D, JD));
+    double prev = 0.0;
+    for (int k = 0; k < 5; ++k) {
+      const double e = 1e-3 / (1 << k);
+      Vec Ye, Yde;
+      PetscCallAbort(comm, VecDuplicate(Y, &Ye));
+      PetscCallAbort(comm, VecDuplicate(Y, &Yde));
+      PetscCallAbort(comm, VecWAXPY(Ye, e, D, Y));
+      PetscCallAbort(comm, VecWAXPY(Yde, sigma * e, D, Yd));
+      PetscCallAbort(comm, cs.residual(t, Ye, Yde, F1));
+      PetscCallAbort(comm, VecAXPY(F1, -1.0, F0));
+      PetscCallAbort(comm, VecAXPY(F1, -e, JD));
+      PetscReal r;
+      PetscCallAbort(comm, VecNorm(F1, NORM_2, &r));
+      if (k > 0) {
+        std::printf("%s %s e = %.3e  remainder %.4e  ratio %.3f\n", scene.bodies.empty() ? "chain" : "cable",
+                    form == model::DynamicsDesc::ConstraintForm::Ggl ? "GGL   " : "index3", e, r, prev / r);
+        EXPECT_NEAR(prev / r, 4.0, 0.2);
+      }
+      prev = r;
+      VecDestroy(&Ye);
+      VecDestroy(&Yde);
+    }
+    for (Vec* v : {&Y, &Yd, &D, &F0, &F1, &JD, &supported, &multipliers}) VecDestroy(v);
+    MatDestroy(&M);
+  }
 }

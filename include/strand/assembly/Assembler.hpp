@@ -51,6 +51,14 @@ public:
   // R = 0 except on multiplier rows, where R = v^T (d^2 g_k / dq^2) v (acceleration-level
   // constraint G a = -R).
   PetscErrorCode constraintVelocityTerm(Vec X, Vec V, Vec R);
+  // The GGL stabilization of the first-order form (solvers/ConstrainedStateSpace.hpp), with W's
+  // coordinate entries velocities and its multiplier entries the GGL multipliers:
+  // R = s G^T W on coordinate rows, s G W on multiplier rows (s the constraint scale; every column,
+  // supports included; supported rows not overwritten).
+  PetscErrorCode constraintGradientProduct(Vec X, Vec W, Vec R);
+  // Its Newton matrices: C = [0, s G^T; s G, 0] (the derivative in W) and dC = its derivative in X
+  // (each may be null; rows and columns of supported DOFs left out, no unit diagonal).
+  PetscErrorCode constraintGradientMatrices(Vec X, Vec W, Mat C, Mat dC);
   // Largest |g(q)| and |G v| over all joints (all ranks get them; 0 without joints).
   PetscErrorCode constraintViolation(Vec X, Vec V, PetscReal* position, PetscReal* velocity);
   // Static residual R(X) = f_int(X) - loadFactor f_ext(X); supported rows X.

@@ -208,6 +208,9 @@ struct DynamicsDesc {
   int bdfOrder = 2;       // BDF: 1..5
   bool adaptive = false;  // BDF: step size from the local error estimate (rtol, atol); dt is the first step
   double rtol = 1e-4, atol = 1e-6;  // BDF adaptive: weighted error norm of (u [m], v [m/s])
+  // BDF with joints: the stabilized index-2 form (GGL; multipliers out of the error norm), or the
+  // plain index-3 form with every unknown in the error norm (fails: kept to show why, issue 3)
+  enum class ConstraintForm { Ggl, Index3 } constraintForm = ConstraintForm::Ggl;
   double dt = 0.0;        // fixed step [s] (required; adaptive: the first step)
   double tEnd = 0.0;      // final time [s] (required)
   int outputEvery = 1;    // write a frame every k steps (and the last step)
@@ -215,7 +218,7 @@ struct DynamicsDesc {
   SourceMark mark;
 };
 
-// Whether the integrator works on the first-order form (no joints).
+// Whether the integrator works on the first-order form y = (u, v).
 inline bool isFirstOrder(Integrator i) { return i == Integrator::Bdf || i == Integrator::Rk4 || i == Integrator::Abm4; }
 inline bool isExplicit(Integrator i) { return i == Integrator::Rk4 || i == Integrator::Abm4; }
 

@@ -45,6 +45,7 @@
 
 #include "strand/assembly/Assembler.hpp"
 #include "strand/model/SceneDescription.hpp"
+#include "strand/solvers/ConstrainedStateSpace.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
 #include "strand/solvers/StateSpace.hpp"
 #include "strand/solvers/StaticSolver.hpp"
@@ -150,6 +151,7 @@ private:
   std::string _schemeName;
   KSP _massSolver = nullptr;              // first-order form: the masked mass, factored once
   std::unique_ptr<StateSpace> _space;
+  std::unique_ptr<ConstrainedStateSpace> _constrainedSpace;  // BDF with joints
   Vec _Y = nullptr, _acc = nullptr;       // first-order state (u, v); scratch acceleration
   AlphaParams _params{0.0, 0.0, 0.5, 0.25};
   const StepCallback* _onStep = nullptr;
@@ -158,6 +160,7 @@ private:
   NewtonFloor _floor;
   std::function<bool()> _stopCheck;
   bool _stopped = false;
+  double _collapsedStep = 0.0;  // adaptive BDF: the step taken at the controller's minimum (postStep)
   bool _resuming = false;
   ResumeState _resume;  // its A, a are owned copies while _resuming
   double _e0 = 0.0, _energyScale = 0.0, _blowUp = 0.0;  // blow-up guard (monitor, postStep)

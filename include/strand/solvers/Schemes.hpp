@@ -15,6 +15,9 @@ std::string schemeName(const model::DynamicsDesc& desc);
 // Arnold & Bruls 2007 parameters of the generalized-alpha family (alpha_m, alpha_f weight the start
 // of the step): Newmark, HHT from hht_alpha, generalized-alpha from rho_inf. Others: Newmark's.
 AlphaParams alphaParams(const model::DynamicsDesc& desc);
+// Adaptive BDF: the smallest step the controller may choose, as a fraction of the first step. PETSc
+// accepts a step at this limit whatever its error, so the dynamics stop there instead (a collapse).
+constexpr double kMinStepFraction = 1e-10;
 // Step, final time, step count (landing on t_end), a fixed step's first Newton failure ending the
 // run (adaptive BDF: a rejected step), and the adaptor (BDF adaptive: TSADAPTBASIC with rtol/atol).
 PetscErrorCode configureTimeStepping(TS ts, const model::DynamicsDesc& desc);

@@ -49,6 +49,8 @@ public:
 
   // Sets the TS's IFunction and IJacobian (MatShell) and the SNES's linear solver (PCShell).
   PetscErrorCode setImplicit(TS ts);
+  // The implicit residual F(t, Y, Ydot) (TS IFunction) without a TS (ConstrainedStateSpace builds on it).
+  PetscErrorCode implicitResidual(PetscReal t, Vec Y, Vec Ydot, Vec F) { return iFunction(nullptr, t, Y, Ydot, F, this); }
   // Sets the TS's RHSFunction.
   PetscErrorCode setExplicit(TS ts);
   // Accelerations of the state (X, V) at time t: free rows from the mass solve, a_p on supported rows.
