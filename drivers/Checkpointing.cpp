@@ -65,9 +65,14 @@ void writeDynamicsCheckpoint(MPI_Comm comm, const model::SceneDescription& scene
   if (s.A) vecs.push_back({"A", s.A});
   if (s.a) vecs.push_back({"a", s.a});
   for (const auto& [name, v] : vecs) PetscCallAbort(comm, problem.assembler().toModelOrder(v, c.vectors[name]));
-  // ABM4's history: f_k = (u', v') per entry, each half in model numbering
+  // ABM4's history: f_k = (u', v') per entry; fixed-step BDF's: y_k = (u, v); each half in model numbering
   c.scalars["history_count"] = s.historyCount;
   c.scalars["history_step"] = s.historyStep;
+  if (!s.historyTimes.empty()) {  // fixed-step BDF: states y_k (not rates) at these times
+    c.scalars["bdf_order"] = s.bdfOrder;
+    c.scalars["bdf_steps"] = s.bdfSteps;
+    for (size_t k = 0; k < s.historyTimes.size(); ++k) c.scalars["history_time_" + std::to_string(k)] = s.historyTimes[k];
+  }
   if (s.historyCount > 0) {
     Vec u, v;
     PetscCallAbort(comm, VecDuplicate(X, &u));
@@ -123,8 +128,12 @@ io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& sce
       check("a");
     }
     const double count = sc.count("history_count") ? sc.at("history_count") : 0.0;
-    if (!(count >= 0.0 && count <= 4.0) || count != std::floor(count)) problem = "history_count must be 0..4";
+    if (!(count >= 0.0 && count <= 7.0) || count != std::floor(count)) problem = "history_count must be 0..7";
     else if (count > 0.0 && !sc.count("history_step")) problem = "the checkpoint has no 'history_step'";
+    else if (sc.count("bdf_order") && !sc.count("bdf_steps")) problem = "the checkpoint has no 'bdf_steps'";
+    for (int k = 0; sc.count("bdf_order") && k < static_cast<int>(count) && problem.empty(); ++k)
+      if (!sc.count("history_time_" + std::to_string(k)))
+        problem = "the checkpoint has no 'history_time_" + std::to_string(k) + "'";
     for (int k = 0; k < static_cast<int>(count) && problem.empty(); ++k) {
       check("f" + std::to_string(k) + "_u");
       check("f" + std::to_string(k) + "_v");
@@ -189,6 +198,11 @@ int resumeDynamics(MPI_Comm comm, const io::CheckpointData& data, const std::str
   if (historyCount > 0 && dyn.stateSpace()) {
     s.historyCount = historyCount;
     s.historyStep = sc.at("history_step");
+    if (sc.count("bdf_order")) {
+      s.bdfOrder = static_cast<int>(sc.at("bdf_order"));
+      s.bdfSteps = static_cast<int>(sc.at("bdf_steps"));
+      for (int k = 0; k < historyCount; ++k) s.historyTimes.push_back(sc.at("history_time_" + std::to_string(k)));
+    }
     Vec hu, hv;
     PetscCallAbort(comm, VecDuplicate(X, &hu));
     PetscCallAbort(comm, VecDuplicate(X, &hv));

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "strand/solvers/AdamsBashforthMoulton.hpp"
+#include "strand/solvers/FixedStepBdf.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
 #include "strand/solvers/StaticSolver.hpp"
 
@@ -49,6 +50,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
 
   PetscCallAbort(comm, GeneralizedAlphaRegister());
   PetscCallAbort(comm, AdamsBashforthMoultonRegister());
+  PetscCallAbort(comm, FixedStepBdfRegister());
   PetscCallAbort(comm, TSCreate(comm, &_ts));
   PetscCallAbort(comm, TSSetOptionsPrefix(_ts, "dyn_"));
   if (_firstOrder) {
@@ -60,7 +62,10 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
       _constrainedSpace = std::make_unique<ConstrainedStateSpace>(assembler, *_space, _supported, _multipliers, _damped,
                                                                   desc.constraintForm);
     PetscCallAbort(comm, _space->createState(&_Y));
-    if (desc.integrator == model::Integrator::Bdf) {
+    if (desc.integrator == model::Integrator::Bdf && !desc.adaptive) {  // ours: its history goes into checkpoints
+      PetscCallAbort(comm, TSSetType(_ts, kTsFixedStepBdf));
+      PetscCallAbort(comm, FixedStepBdfSetOrder(_ts, desc.bdfOrder));
+    } else if (desc.integrator == model::Integrator::Bdf) {
       PetscCallAbort(comm, TSSetType(_ts, TSBDF));
       PetscCallAbort(comm, TSBDFSetOrder(_ts, desc.bdfOrder));
     } else if (desc.integrator == model::Integrator::Rk4) {
@@ -494,8 +499,21 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     }
     PetscCall(_space->pack(X, V, _Y));
     PetscCall(TSSetSolution(_ts, _Y));
-    if (_resuming && _resume.historyCount > 0)
-      PetscCall(AdamsBashforthMoultonSetHistory(_ts, _resume.historyCount, _resume.historyStep, _resume.history));
+    PetscBool abm, bdf;
+    PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsAdamsBashforthMoulton, &abm));
+    if (abm && _resuming && _resume.historyCount > 0)
+      PetscCall(AdamsBashforthMoultonSetHistory(_ts, _resume.historyCount, _resume.historyStep, _resume.history.data()));
+    PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsFixedStepBdf, &bdf));
+    if (bdf) {  // a checkpoint's history, or none: a start
+      BdfHistory h;
+      if (_resuming) {
+        h.order = _resume.bdfOrder;
+        h.steps = _resume.bdfSteps;
+        h.times = _resume.historyTimes;
+        h.states.assign(_resume.history.begin(), _resume.history.begin() + _resume.historyTimes.size());
+      }
+      PetscCall(FixedStepBdfSetHistory(_ts, h));
+    }
     PetscCall(TSSolve(_ts, _Y));
     PetscCall(_space->unpack(_Y, X, V));
   } else {

@@ -1,6 +1,7 @@
 // Dynamics: the state a checkpoint needs to continue a run (Dynamics.hpp, ResumeState).
 #include "strand/solvers/AdamsBashforthMoulton.hpp"
 #include "strand/solvers/Dynamics.hpp"
+#include "strand/solvers/FixedStepBdf.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
 
 #include <sstream>
@@ -31,9 +32,21 @@ PetscErrorCode Dynamics::saveState(ResumeState* s) {
   if (abm) {
     PetscInt count;
     PetscReal h;
-    PetscCall(AdamsBashforthMoultonGetHistory(_ts, &count, &h, s->history));
+    PetscCall(AdamsBashforthMoultonGetHistory(_ts, &count, &h, s->history.data()));
     s->historyCount = static_cast<int>(count);
     s->historyStep = h;
+  }
+  s->historyTimes.clear();
+  PetscBool bdf = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsFixedStepBdf, &bdf));
+  if (bdf) {
+    BdfHistory h;
+    PetscCall(FixedStepBdfGetHistory(_ts, &h));
+    s->historyCount = static_cast<int>(h.states.size());
+    for (int i = 0; i < s->historyCount; ++i) s->history[i] = h.states[i];
+    s->historyTimes = h.times;
+    s->bdfOrder = static_cast<int>(h.order);
+    s->bdfSteps = static_cast<int>(h.steps);
   }
   PetscFunctionReturn(0);
 }
@@ -45,7 +58,7 @@ PetscErrorCode Dynamics::resumeFrom(const ResumeState& s) {
   for (Vec& v : _resume.history) PetscCall(VecDestroy(&v));
   _resume = s;
   _resume.A = _resume.a = nullptr;
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < static_cast<int>(_resume.history.size()); ++i) {
     _resume.history[i] = nullptr;
     if (i < s.historyCount) {
       PetscCall(VecDuplicate(s.history[i], &_resume.history[i]));
@@ -68,7 +81,7 @@ bool Dynamics::exactRestart() const {
   PetscBool alpha2 = PETSC_FALSE, bdf = PETSC_FALSE;
   PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2);
   PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSBDF, &bdf);
-  return !alpha2 && !bdf;  // TSALPHA2 and TSBDF keep their state private
+  return !alpha2 && !bdf;  // TSALPHA2 and TSBDF (adaptive BDF) keep their state private
 }
 
 std::string Dynamics::signature() const {

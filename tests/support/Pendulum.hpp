@@ -43,7 +43,9 @@ struct PendulumRun {
 };
 
 // Runs the pendulum scene sc with scheme d; a failure is returned, not asserted (expectFailure).
-inline PendulumRun runPendulum(const model::SceneDescription& sc, const model::DynamicsDesc& d, bool expectFailure) {
+// fromOptions: the PETSc options database may change the TS (Dynamics::setFromOptions).
+inline PendulumRun runPendulum(const model::SceneDescription& sc, const model::DynamicsDesc& d, bool expectFailure,
+                               bool fromOptions = false) {
   solvers::Problem p(PETSC_COMM_WORLD, sc);
   MPI_Comm comm = PETSC_COMM_WORLD;
   Vec X, V;
@@ -54,6 +56,7 @@ inline PendulumRun runPendulum(const model::SceneDescription& sc, const model::D
   PendulumRun out;
   out.scale = sc.bodies[0].rho * sc.bodies[0].A * 1.0 * 9.81 * 0.5;
   solvers::Dynamics dyn(p.assembler(), d);
+  if (fromOptions) PetscCallAbort(comm, dyn.setFromOptions());
   solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec, Vec) -> PetscErrorCode {
     if (st.step == 0) out.e0 = st.energy();
     out.maxDrift = std::max(out.maxDrift, std::fabs(st.energy() - out.e0));

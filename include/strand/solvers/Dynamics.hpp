@@ -42,6 +42,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "strand/assembly/Assembler.hpp"
 #include "strand/model/SceneDescription.hpp"
@@ -67,7 +68,8 @@ struct DynamicsStep {
 
 // What a checkpoint holds besides X and V, to continue a run exactly (Dynamics::saveState,
 // resumeFrom): the time, the step, the energy monitor's accumulators, and generalized-alpha's
-// accelerations A and a (the multistep schemes restart their start-up instead: not exact).
+// accelerations A and a, ABM4's rate history, or fixed-step BDF's state history (adaptive BDF,
+// PETSc's TSBDF, restarts its start-up instead: not exact).
 struct ResumeState {
   double time = 0.0;
   int step = 0;
@@ -76,7 +78,9 @@ struct ResumeState {
   Vec A = nullptr, a = nullptr;  // generalized-alpha only; saveState lends them, resumeFrom copies them
   int historyCount = 0;          // ABM4: f_n, f_{n-1}, ... in the first-order layout (state space)
   double historyStep = 0.0;
-  Vec history[4] = {};
+  std::vector<Vec> history = std::vector<Vec>(8, nullptr);  // ABM4's rates or BDF's states (owned by whoever filled them)
+  std::vector<double> historyTimes;  // fixed-step BDF: the times of its states (most recent first)
+  int bdfOrder = 1, bdfSteps = 0;    // fixed-step BDF: current order, steps since its start
 };
 
 class Dynamics {

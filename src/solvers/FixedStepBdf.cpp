@@ -1,0 +1,278 @@
+// Fixed-step BDF with a readable history (FixedStepBdf.hpp).
+#include "strand/solvers/FixedStepBdf.hpp"
+
+#include <petsc/private/tsimpl.h>
+
+#include <algorithm>
+
+namespace strand::solvers {
+
+namespace {
+
+constexpr size_t kKeep = 7;  // states kept: order 5 needs 5, its predictor 6, plus the half step
+
+struct BdfData {
+  PetscInt order = 2;
+  PetscInt k = 1, steps = 0;       // current order, steps since the start
+  std::vector<PetscReal> times;    // most recent first (after the start the half step is last)
+  std::vector<Vec> states;
+  PetscReal stageTime = 0.0, shift = 0.0;
+  Vec V0 = nullptr, Ydot = nullptr;  // y' = shift y + V0 at the stage
+};
+
+BdfData* dataOf(TS ts) { return static_cast<BdfData*>(ts->data); }
+
+PetscErrorCode checkType(TS ts) {
+  PetscBool match;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ts), kTsFixedStepBdf, &match));
+  PetscCheck(match, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_WRONG, "TS is not of type %s",
+             kTsFixedStepBdf);
+  PetscFunctionReturn(0);
+}
+
+// l_j'(T0) of the Lagrange basis on the nodes T: l_0' = sum_{i>0} 1/(T0 - Ti),
+// l_j' = prod_{i != 0, j} (T0 - Ti) / prod_{i != j} (Tj - Ti).
+std::vector<PetscReal> derivativeAtFirst(const std::vector<PetscReal>& T) {
+  const size_t m = T.size();
+  std::vector<PetscReal> c(m, 0.0);
+  for (size_t i = 1; i < m; ++i) c[0] += 1.0 / (T[0] - T[i]);
+  for (size_t j = 1; j < m; ++j) {
+    PetscReal num = 1.0, den = 1.0;
+    for (size_t i = 0; i < m; ++i) {
+      if (i == j) continue;
+      if (i != 0) num *= T[0] - T[i];
+      den *= T[j] - T[i];
+    }
+    c[j] = num / den;
+  }
+  return c;
+}
+
+PetscErrorCode snesFunction(SNES, Vec Y, Vec F, TS ts) {
+  BdfData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(d->Ydot, d->shift, Y, d->V0));
+  PetscCall(TSComputeIFunction(ts, d->stageTime, Y, d->Ydot, F, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode snesJacobian(SNES, Vec Y, Mat J, Mat P, TS ts) {
+  BdfData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(d->Ydot, d->shift, Y, d->V0));
+  PetscCall(TSComputeIJacobian(ts, d->stageTime, Y, d->Ydot, d->shift, J, P, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+// One BDF solve at t1 on the nodes t1 and the first k history times; Y holds the predictor and
+// returns the solution. *ok: Newton converged (TSAdaptCheckStage counts the failures).
+PetscErrorCode solveStage(TS ts, PetscReal t1, PetscInt k, Vec Y, PetscBool* ok) {
+  BdfData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  std::vector<PetscReal> T{t1};
+  for (PetscInt j = 0; j < k && j < static_cast<PetscInt>(d->times.size()); ++j) T.push_back(d->times[j]);
+  const std::vector<PetscReal> c = derivativeAtFirst(T);
+  PetscCall(VecSet(d->V0, 0.0));
+  for (size_t j = 1; j < T.size(); ++j) PetscCall(VecAXPY(d->V0, c[j], d->states[j - 1]));
+  d->shift = c[0];
+  d->stageTime = t1;
+  PetscCall(TSPreStage(ts, t1));
+  PetscCall(SNESSolve(ts->snes, nullptr, Y));
+  PetscInt nits, lits;
+  PetscCall(SNESGetIterationNumber(ts->snes, &nits));
+  PetscCall(SNESGetLinearSolveIterations(ts->snes, &lits));
+  ts->snes_its += nits;
+  ts->ksp_its += lits;
+  PetscCall(TSPostStage(ts, t1, 0, &Y));
+  PetscCall(TSAdaptCheckStage(ts->adapt, ts, t1, Y, ok));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode push(BdfData* d, PetscReal t, Vec y, bool front) {
+  PetscFunctionBeginUser;
+  Vec copy;
+  PetscCall(VecDuplicate(y, &copy));
+  PetscCall(VecCopy(y, copy));
+  d->times.insert(front ? d->times.begin() : d->times.end(), t);
+  d->states.insert(front ? d->states.begin() : d->states.end(), copy);
+  while (d->states.size() > kKeep) {
+    PetscCall(VecDestroy(&d->states.back()));
+    d->states.pop_back();
+    d->times.pop_back();
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode clearHistory(BdfData* d) {
+  PetscFunctionBeginUser;
+  for (Vec& v : d->states) PetscCall(VecDestroy(&v));
+  d->states.clear();
+  d->times.clear();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode step(TS ts) {
+  BdfData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  if (d->states.empty()) {  // a start: the initial state is the history
+    PetscCall(push(d, ts->ptime, ts->vec_sol, true));
+    d->k = 1;
+    d->steps = 0;
+  }
+  const PetscReal h = ts->time_step, t1 = ts->ptime + h;
+  Vec Y = ts->vec_sol;
+  PetscBool ok = PETSC_TRUE;
+  PetscInt k = d->k;
+  bool half = false;
+  if (d->steps == 0 && d->order > 1) {  // backward Euler to t + h/2, kept as a history point
+    PetscCall(VecCopy(d->states[0], Y));
+    PetscCall(solveStage(ts, ts->ptime + 0.5 * h, 1, Y, &ok));
+    if (ok) {
+      PetscCall(push(d, ts->ptime + 0.5 * h, Y, false));
+      half = true;
+      k = std::min<PetscInt>(2, d->order);
+    }
+  } else if (d->steps > 0) {
+    k = std::min(d->k + 1, d->order);
+  }
+  if (ok) {  // predictor: the polynomial through the last min(k + 1, history) states, at t1
+    const size_t m = std::min<size_t>(k + 1, d->times.size());
+    PetscCall(VecSet(Y, 0.0));
+    for (size_t j = 0; j < m; ++j) {
+      PetscReal c = 1.0;
+      for (size_t i = 0; i < m; ++i)
+        if (i != j) c *= (t1 - d->times[i]) / (d->times[j] - d->times[i]);
+      PetscCall(VecAXPY(Y, c, d->states[j]));
+    }
+    PetscCall(solveStage(ts, t1, k, Y, &ok));
+  }
+  if (!ok) {  // a fixed step: the failure ends the run (TSSetMaxSNESFailures); the state stays y_n
+    if (half) {
+      PetscCall(VecDestroy(&d->states.back()));
+      d->states.pop_back();
+      d->times.pop_back();
+    }
+    PetscCall(VecCopy(d->states[0], ts->vec_sol));
+    ts->reject++;
+    if (!ts->reason) ts->reason = TS_DIVERGED_NONLINEAR_SOLVE;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(push(d, t1, Y, true));
+  d->k = k;
+  ++d->steps;
+  PetscReal next = h;
+  PetscBool accept;
+  PetscCall(TSAdaptChoose(ts->adapt, ts, h, nullptr, &next, &accept));
+  ts->ptime += h;
+  ts->time_step = next;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode setUp(TS ts) {
+  BdfData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  for (Vec* v : {&d->V0, &d->Ydot})
+    if (!*v) PetscCall(VecDuplicate(ts->vec_sol, v));
+  PetscCall(TSGetSNES(ts, &ts->snes));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode reset(TS ts) {
+  BdfData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  PetscCall(clearHistory(d));
+  PetscCall(VecDestroy(&d->V0));
+  PetscCall(VecDestroy(&d->Ydot));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode destroy(TS ts) {
+  PetscFunctionBeginUser;
+  PetscCall(reset(ts));
+  delete dataOf(ts);
+  ts->data = nullptr;
+  PetscCall(PetscObjectComposeFunction(reinterpret_cast<PetscObject>(ts), "TSBDFSetOrder_C", nullptr));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode setFromOptions(TS ts, PetscOptionItems* PetscOptionsObject) {
+  BdfData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  PetscOptionsHeadBegin(PetscOptionsObject, "Strand fixed-step BDF options");
+  PetscCall(PetscOptionsInt("-ts_strand_bdf_order", "Order of the BDF method", "FixedStepBdfSetOrder", d->order,
+                            &d->order, nullptr));
+  PetscOptionsHeadEnd();
+  PetscCheck(d->order >= 1 && d->order <= 5, PetscObjectComm(reinterpret_cast<PetscObject>(ts)),
+             PETSC_ERR_ARG_OUTOFRANGE, "BDF order %d not in 1..5", static_cast<int>(d->order));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode view(TS ts, PetscViewer viewer) {
+  PetscBool ascii;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(viewer), PETSCVIEWERASCII, &ascii));
+  if (ascii)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  order %d, fixed step, TSBDF's start (half step)\n",
+                                     static_cast<int>(dataOf(ts)->order)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode create(TS ts) {
+  PetscFunctionBeginUser;
+  ts->ops->reset = reset;
+  ts->ops->destroy = destroy;
+  ts->ops->view = view;
+  ts->ops->setup = setUp;
+  ts->ops->setfromoptions = setFromOptions;
+  ts->ops->step = step;
+  ts->ops->snesfunction = snesFunction;
+  ts->ops->snesjacobian = snesJacobian;
+  ts->default_adapt_type = TSADAPTNONE;
+  ts->usessnes = PETSC_TRUE;
+  ts->data = new BdfData();
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode FixedStepBdfRegister() {
+  static bool registered = false;
+  PetscFunctionBeginUser;
+  if (!registered) PetscCall(TSRegister(kTsFixedStepBdf, create));
+  registered = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FixedStepBdfSetOrder(TS ts, PetscInt order) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  PetscCheck(order >= 1 && order <= 5, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_OUTOFRANGE,
+             "BDF order %d not in 1..5", static_cast<int>(order));
+  dataOf(ts)->order = order;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FixedStepBdfGetHistory(TS ts, BdfHistory* h) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  const BdfData* d = dataOf(ts);
+  h->order = d->k;
+  h->steps = d->steps;
+  h->times = d->times;
+  h->states = d->states;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FixedStepBdfSetHistory(TS ts, const BdfHistory& h) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  BdfData* d = dataOf(ts);
+  PetscCall(clearHistory(d));
+  for (size_t j = 0; j < h.states.size(); ++j) PetscCall(push(d, h.times[j], h.states[j], false));
+  d->k = h.order;
+  d->steps = h.steps;
+  PetscFunctionReturn(0);
+}
+
+}  // namespace strand::solvers
