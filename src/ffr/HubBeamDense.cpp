@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "strand/ffr/HubBeamDynamics.hpp"
+#include "strand/math/Lagrange.hpp"
 #include "strand/solvers/Schemes.hpp"
 
 namespace strand::ffr {
@@ -36,33 +37,6 @@ int newton(Eigen::VectorXd& x, Residual&& residual, Jacobian&& jacobian, double 
     *converged = *norm <= atol || *norm <= 1e-10 * g0;
   }
   return its;
-}
-
-// Derivative at T[0] of the Lagrange basis on the nodes T (BDF on a non-uniform history, as TSBDF):
-// l_0'(T0) = sum_{i>0} 1/(T0 - Ti); l_j'(T0) = prod_{i != 0, j} (T0 - Ti) / prod_{i != j} (Tj - Ti).
-std::vector<double> lagrangeDerivativeAtFirst(const std::vector<double>& T) {
-  const size_t m = T.size();
-  std::vector<double> c(m, 0.0);
-  for (size_t i = 1; i < m; ++i) c[0] += 1.0 / (T[0] - T[i]);
-  for (size_t j = 1; j < m; ++j) {
-    double num = 1.0, den = 1.0;
-    for (size_t i = 0; i < m; ++i) {
-      if (i == j) continue;
-      if (i != 0) num *= T[0] - T[i];
-      den *= T[j] - T[i];
-    }
-    c[j] = num / den;
-  }
-  return c;
-}
-
-// Values at t of the Lagrange basis on the nodes T (the BDF predictor's extrapolation).
-std::vector<double> lagrangeValues(const std::vector<double>& T, double t) {
-  std::vector<double> c(T.size(), 1.0);
-  for (size_t j = 0; j < T.size(); ++j)
-    for (size_t i = 0; i < T.size(); ++i)
-      if (i != j) c[j] *= (t - T[i]) / (T[j] - T[i]);
-  return c;
 }
 
 // The TS's step sequence (PETSc 3.18, TSAdaptChoose with TS_EXACTFINALTIME_MATCHSTEP and a fixed
@@ -169,7 +143,7 @@ PetscErrorCode HubBeamDynamics::runDenseBdf() {
   auto solve = [&](double t1, int k, Eigen::VectorXd& y, Eigen::VectorXd& ydot, bool* converged) {
     std::vector<double> T{t1};
     for (int j = 0; j < k && j < static_cast<int>(times.size()); ++j) T.push_back(times[j]);
-    const std::vector<double> c = lagrangeDerivativeAtFirst(T);
+    const std::vector<double> c = math::lagrangeDerivativeAtFirst(T);
     Eigen::VectorXd V0 = Eigen::VectorXd::Zero(2 * n);
     for (size_t j = 1; j < T.size(); ++j) V0 += c[j] * states[j - 1];
     const double s = c[0];
@@ -236,7 +210,7 @@ PetscErrorCode HubBeamDynamics::runDenseBdf() {
     {  // predictor: the polynomial through the last min(k + 1, history) states, at t1
       const int m = std::min<int>(k + 1, static_cast<int>(times.size()));
       const std::vector<double> T(times.begin(), times.begin() + m);
-      const std::vector<double> c = lagrangeValues(T, t1);
+      const std::vector<double> c = math::lagrangeValues(T, t1);
       y = Eigen::VectorXd::Zero(2 * n);
       for (int j = 0; j < m; ++j) y += c[j] * states[j];
     }

@@ -1,5 +1,6 @@
 // Fixed-step BDF with a readable history (FixedStepBdf.hpp).
 #include "strand/solvers/FixedStepBdf.hpp"
+#include "strand/math/Lagrange.hpp"
 
 #include <petsc/private/tsimpl.h>
 
@@ -31,24 +32,6 @@ PetscErrorCode checkType(TS ts) {
   PetscFunctionReturn(0);
 }
 
-// l_j'(T0) of the Lagrange basis on the nodes T: l_0' = sum_{i>0} 1/(T0 - Ti),
-// l_j' = prod_{i != 0, j} (T0 - Ti) / prod_{i != j} (Tj - Ti).
-std::vector<PetscReal> derivativeAtFirst(const std::vector<PetscReal>& T) {
-  const size_t m = T.size();
-  std::vector<PetscReal> c(m, 0.0);
-  for (size_t i = 1; i < m; ++i) c[0] += 1.0 / (T[0] - T[i]);
-  for (size_t j = 1; j < m; ++j) {
-    PetscReal num = 1.0, den = 1.0;
-    for (size_t i = 0; i < m; ++i) {
-      if (i == j) continue;
-      if (i != 0) num *= T[0] - T[i];
-      den *= T[j] - T[i];
-    }
-    c[j] = num / den;
-  }
-  return c;
-}
-
 PetscErrorCode snesFunction(SNES, Vec Y, Vec F, TS ts) {
   BdfData* d = dataOf(ts);
   PetscFunctionBeginUser;
@@ -72,7 +55,7 @@ PetscErrorCode solveStage(TS ts, PetscReal t1, PetscInt k, Vec Y, PetscBool* ok)
   PetscFunctionBeginUser;
   std::vector<PetscReal> T{t1};
   for (PetscInt j = 0; j < k && j < static_cast<PetscInt>(d->times.size()); ++j) T.push_back(d->times[j]);
-  const std::vector<PetscReal> c = derivativeAtFirst(T);
+  const std::vector<double> c = math::lagrangeDerivativeAtFirst(T);
   PetscCall(VecSet(d->V0, 0.0));
   for (size_t j = 1; j < T.size(); ++j) PetscCall(VecAXPY(d->V0, c[j], d->states[j - 1]));
   d->shift = c[0];
@@ -138,13 +121,9 @@ PetscErrorCode step(TS ts) {
   }
   if (ok) {  // predictor: the polynomial through the last min(k + 1, history) states, at t1
     const size_t m = std::min<size_t>(k + 1, d->times.size());
+    const std::vector<double> c = math::lagrangeValues({d->times.begin(), d->times.begin() + m}, t1);
     PetscCall(VecSet(Y, 0.0));
-    for (size_t j = 0; j < m; ++j) {
-      PetscReal c = 1.0;
-      for (size_t i = 0; i < m; ++i)
-        if (i != j) c *= (t1 - d->times[i]) / (d->times[j] - d->times[i]);
-      PetscCall(VecAXPY(Y, c, d->states[j]));
-    }
+    for (size_t j = 0; j < m; ++j) PetscCall(VecAXPY(Y, c[j], d->states[j]));
     PetscCall(solveStage(ts, t1, k, Y, &ok));
   }
   if (!ok) {  // a fixed step: the failure ends the run (TSSetMaxSNESFailures); the state stays y_n

@@ -21,6 +21,26 @@ using namespace strand::testing;
 
 namespace {
 
+// A state with entries uniform in [-1/2, 1/2], the displacement half scaled by scaleU.
+Vec randomState(const solvers::StateSpace& space, MPI_Comm comm, unsigned seed, double scaleU) {
+  Vec Y;
+  PetscCallAbort(comm, space.createState(&Y));
+  PetscRandom r;
+  PetscCallAbort(comm, PetscRandomCreate(comm, &r));
+  PetscCallAbort(comm, PetscRandomSetSeed(r, seed));
+  PetscCallAbort(comm, PetscRandomSeed(r));
+  PetscCallAbort(comm, VecSetRandom(Y, r));
+  PetscCallAbort(comm, PetscRandomDestroy(&r));
+  PetscCallAbort(comm, VecShift(Y, -0.5));
+  PetscScalar* y;
+  PetscInt n;
+  PetscCallAbort(comm, VecGetLocalSize(Y, &n));
+  PetscCallAbort(comm, VecGetArray(Y, &y));
+  for (PetscInt i = 0; i < n / 2; ++i) y[i] *= scaleU;
+  PetscCallAbort(comm, VecRestoreArray(Y, &y));
+  return Y;
+}
+
 struct Fixture {
   MPI_Comm comm = PETSC_COMM_WORLD;
   model::SceneDescription scene;
@@ -74,21 +94,7 @@ struct Fixture {
   }
   // a state with displacements ~1e-2 m and velocities ~1 m/s, prescribed entries at time t
   Vec state(double t, unsigned seed) {
-    Vec Y;
-    PetscCallAbort(comm, space->createState(&Y));
-    PetscRandom r;
-    PetscCallAbort(comm, PetscRandomCreate(comm, &r));
-    PetscCallAbort(comm, PetscRandomSetSeed(r, seed));
-    PetscCallAbort(comm, PetscRandomSeed(r));
-    PetscCallAbort(comm, VecSetRandom(Y, r));
-    PetscCallAbort(comm, PetscRandomDestroy(&r));
-    PetscCallAbort(comm, VecShift(Y, -0.5));
-    PetscScalar* y;
-    PetscInt n;
-    PetscCallAbort(comm, VecGetLocalSize(Y, &n));
-    PetscCallAbort(comm, VecGetArray(Y, &y));
-    for (PetscInt i = 0; i < n / 2; ++i) y[i] *= 2e-2;
-    PetscCallAbort(comm, VecRestoreArray(Y, &y));
+    Vec Y = randomState(*space, comm, seed, 2e-2);
     PetscCallAbort(comm, space->prescribe(t, Y));
     return Y;
   }
@@ -227,24 +233,7 @@ TEST(ConstrainedStateSpace, NewtonMatrixPassesTheTaylorTestOnBothForms) {
     PetscCallAbort(comm, ISDestroy(&free));
     solvers::StateSpace space(a, M, supported, nullptr, true);
     solvers::ConstrainedStateSpace cs(a, space, supported, multipliers, true, form);
-    auto random = [&](unsigned seed, double scaleU) {
-      Vec Y;
-      PetscCallAbort(comm, space.createState(&Y));
-      PetscRandom r;
-      PetscCallAbort(comm, PetscRandomCreate(comm, &r));
-      PetscCallAbort(comm, PetscRandomSetSeed(r, seed));
-      PetscCallAbort(comm, PetscRandomSeed(r));
-      PetscCallAbort(comm, VecSetRandom(Y, r));
-      PetscCallAbort(comm, PetscRandomDestroy(&r));
-      PetscCallAbort(comm, VecShift(Y, -0.5));
-      PetscScalar* y;
-      PetscInt n;
-      PetscCallAbort(comm, VecGetLocalSize(Y, &n));
-      PetscCallAbort(comm, VecGetArray(Y, &y));
-      for (PetscInt i = 0; i < n / 2; ++i) y[i] *= scaleU;
-      PetscCallAbort(comm, VecRestoreArray(Y, &y));
-      return Y;
-    };
+    auto random = [&](unsigned seed, double scaleU) { return randomState(space, comm, seed, scaleU); };
     const double t = 0.1, sigma = 1500.0;
     Vec Y = random(7, 5e-2), Yd = random(11, 1.0), D = random(13, 1.0), F0, F1, JD;
     {  // the supported entries are linear rows; leave them alone
