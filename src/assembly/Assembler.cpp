@@ -452,27 +452,8 @@ PetscErrorCode Assembler::saddleMatrix(Vec X, Mat S) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::constraintVelocityTerm(Vec X, Vec V, Vec R) {
-  PetscFunctionBeginUser;
-  Vec xl, vl, rl;
-  const PetscScalar *x, *v;
-  PetscScalar* r;
-  PetscCall(beginLocal(X, _xWork, &xl, &x));
-  PetscCall(beginLocal(V, _vWork, &vl, &v));
-  PetscCall(VecGhostGetLocalForm(_rWork, &rl));
-  PetscCall(VecSet(rl, 0.0));
-  PetscCall(VecGetArray(rl, &r));
-  _multibody->velocityTerm(x, v, r);
-  PetscCall(VecRestoreArray(rl, &r));
-  PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
-  PetscCall(addGhostsToOwners(_rWork));
-  PetscCall(endLocal(_xWork, &xl, &x));
-  PetscCall(endLocal(_vWork, &vl, &v));
-  PetscCall(VecCopy(_rWork, R));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode Assembler::constraintGradientProduct(Vec X, Vec W, Vec R) {
+PetscErrorCode Assembler::jointVector(Vec X, Vec W, const std::function<void(const double*, const double*, double*)>& add,
+                                      Vec R) {
   PetscFunctionBeginUser;
   Vec xl, wl, rl;
   const PetscScalar *x, *w;
@@ -482,7 +463,7 @@ PetscErrorCode Assembler::constraintGradientProduct(Vec X, Vec W, Vec R) {
   PetscCall(VecGhostGetLocalForm(_rWork, &rl));
   PetscCall(VecSet(rl, 0.0));
   PetscCall(VecGetArray(rl, &r));
-  _multibody->gradientProduct(x, w, _constraintScale, r);
+  add(x, w, r);
   PetscCall(VecRestoreArray(rl, &r));
   PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
   PetscCall(addGhostsToOwners(_rWork));
@@ -490,6 +471,16 @@ PetscErrorCode Assembler::constraintGradientProduct(Vec X, Vec W, Vec R) {
   PetscCall(endLocal(_vWork, &wl, &w));
   PetscCall(VecCopy(_rWork, R));
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::constraintVelocityTerm(Vec X, Vec V, Vec R) {
+  return jointVector(X, V, [&](const double* x, const double* v, double* r) { _multibody->velocityTerm(x, v, r); }, R);
+}
+
+PetscErrorCode Assembler::constraintGradientProduct(Vec X, Vec W, Vec R) {
+  return jointVector(
+      X, W, [&](const double* x, const double* w, double* r) { _multibody->gradientProduct(x, w, _constraintScale, r); },
+      R);
 }
 
 PetscErrorCode Assembler::constraintGradientMatrices(Vec X, Vec W, Mat C, Mat dC) {

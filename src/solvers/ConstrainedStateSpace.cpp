@@ -8,7 +8,7 @@ namespace strand::solvers {
 
 ConstrainedStateSpace::ConstrainedStateSpace(assembly::Assembler& assembler, StateSpace& space, Vec supported,
                                              Vec multipliers, bool damped, Form form)
-    : _asm(assembler), _space(space), _damped(damped), _form(form), _supported(supported), _multipliers(multipliers) {
+    : _asm(assembler), _space(space), _damped(damped), _form(form) {
   const model::DofMap& dofs = assembler.dofs();
   MPI_Comm comm = dofs.comm();
   PetscInt N;
@@ -20,22 +20,22 @@ ConstrainedStateSpace::ConstrainedStateSpace(assembly::Assembler& assembler, Sta
   PetscMPIInt size;
   PetscCallAbort(comm, MPI_Comm_size(comm, &size));
   _ranges.assign(ranges, ranges + size + 1);
-  for (Vec* v : {&_free, &_body, &_w}) PetscCallAbort(comm, VecDuplicate(supported, v));
-  // free = 1 - supported; body = free coordinates (no multiplier); the multiplier rows are free - body
+  for (Vec* v : {&_free, &_multiplierRows, &_otherRows, &_w}) PetscCallAbort(comm, VecDuplicate(supported, v));
   PetscCallAbort(comm, VecSet(_free, 1.0));
   PetscCallAbort(comm, VecAXPY(_free, -1.0, supported));
-  PetscCallAbort(comm, VecPointwiseMult(_w, multipliers, _free));
-  PetscCallAbort(comm, VecWAXPY(_body, -1.0, _w, _free));
+  PetscCallAbort(comm, VecPointwiseMult(_multiplierRows, multipliers, _free));
+  PetscCallAbort(comm, VecSet(_otherRows, 1.0));
+  PetscCallAbort(comm, VecAXPY(_otherRows, -1.0, _multiplierRows));
   const PetscScalar *s, *m;
   PetscCallAbort(comm, VecGetArrayRead(supported, &s));
-  PetscCallAbort(comm, VecGetArrayRead(_w, &m));
+  PetscCallAbort(comm, VecGetArrayRead(_multiplierRows, &m));
   for (PetscInt i = 0; i < _n; ++i) {
     _supportedRow.push_back(s[i] != 0.0);
     _multiplierRow.push_back(m[i] != 0.0);
   }
-  PetscCallAbort(comm, VecRestoreArrayRead(_w, &m));
+  PetscCallAbort(comm, VecRestoreArrayRead(_multiplierRows, &m));
   PetscCallAbort(comm, VecRestoreArrayRead(supported, &s));
-  for (Vec* h : {_a, _b, _c})
+  for (Vec* h : {_a, _c})
     for (int k = 0; k < 2; ++k) PetscCallAbort(comm, VecCreateMPIWithArray(comm, 1, _n, N, nullptr, &h[k]));
   for (Mat* A : {&_K, &_M, &_C, &_dC}) PetscCallAbort(comm, dofs.createMatrix(A, "dyn_ggl_"));
   if (damped) PetscCallAbort(comm, dofs.createMatrix(&_D, "dyn_ggl_"));
@@ -43,8 +43,8 @@ ConstrainedStateSpace::ConstrainedStateSpace(assembly::Assembler& assembler, Sta
 }
 
 ConstrainedStateSpace::~ConstrainedStateSpace() {
-  for (Vec* v : {&_free, &_body, &_w, &_atol, &_rtol}) VecDestroy(v);
-  for (Vec* h : {_a, _b, _c})
+  for (Vec* v : {&_free, &_multiplierRows, &_otherRows, &_w, &_atol, &_rtol}) VecDestroy(v);
+  for (Vec* h : {_a, _c})
     for (int k = 0; k < 2; ++k) VecDestroy(&h[k]);
   for (Mat* A : {&_K, &_D, &_M, &_C, &_dC, &_J}) MatDestroy(A);
 }
@@ -79,16 +79,12 @@ PetscErrorCode ConstrainedStateSpace::residual(PetscReal t, Vec Y, Vec Ydot, Vec
   PetscCall(place(_a, y));
   PetscCall(place(_c, f));
   // keep u' - v on coordinate rows and u - u_p on supported rows; multiplier rows anew
-  PetscCall(VecWAXPY(_w, -1.0, _body, _free));  // the multiplier rows
-  PetscCall(VecScale(_w, -1.0));
-  PetscCall(VecShift(_w, 1.0));
-  PetscCall(VecPointwiseMult(_c[0], _c[0], _w));
+  PetscCall(VecPointwiseMult(_c[0], _c[0], _otherRows));
   if (_form == Form::Ggl) {  // + s G^T mu~ on coordinate rows, s G v on multiplier rows
     PetscCall(_asm.constraintGradientProduct(_a[0], _a[1], _w));
     PetscCall(VecPointwiseMult(_w, _w, _free));
   } else {  // mu~ = 0 on multiplier rows
-    PetscCall(VecWAXPY(_w, -1.0, _body, _free));
-    PetscCall(VecPointwiseMult(_w, _w, _a[1]));
+    PetscCall(VecPointwiseMult(_w, _multiplierRows, _a[1]));
   }
   PetscCall(VecAXPY(_c[0], 1.0, _w));
   PetscCall(reset(_a));

@@ -18,8 +18,9 @@ std::string Dynamics::failureHint(const DynamicsStep&) const {
       _desc.constraintForm == model::DynamicsDesc::ConstraintForm::Index3)
     return "constraint_form: index3 integrates the joints as index-3 constraints with the multipliers in the "
            "error norm: on index 3 the BDF error estimate of the multipliers does not fall with the step (Brenan, "
-           "Campbell & Petzold 1996, Sec. 5.4), so the step controller shrinks the step without end. Use constraint_form: ggl (the default: the stabilized index-2 form, multipliers out "
-           "of the error norm; docs/user-guide.md, \"Joints\").";
+           "Campbell & Petzold 1996, Sec. 5.4), so the step controller shrinks the step without end. Use "
+           "constraint_form: ggl (the default: the stabilized index-2 form, multipliers out of the error norm; "
+           "docs/user-guide.md, \"Joints\").";
   if (_desc.integrator == model::Integrator::Bdf)
     return stabilityNote(_desc) + (_desc.adaptive ? "Try tighter rtol/atol, a smaller first dynamics.dt, or -dyn_snes_monitor."
                                                   : "Try a smaller dynamics.dt, adaptive: true, or -dyn_snes_monitor.");

@@ -57,7 +57,7 @@ PetscErrorCode solveStage(TS ts, PetscReal t1, PetscInt k, Vec Y, PetscBool* ok)
   for (PetscInt j = 0; j < k && j < static_cast<PetscInt>(d->times.size()); ++j) T.push_back(d->times[j]);
   const std::vector<double> c = math::lagrangeDerivativeAtFirst(T);
   PetscCall(VecSet(d->V0, 0.0));
-  for (size_t j = 1; j < T.size(); ++j) PetscCall(VecAXPY(d->V0, c[j], d->states[j - 1]));
+  PetscCall(VecMAXPY(d->V0, static_cast<PetscInt>(T.size()) - 1, c.data() + 1, d->states.data()));
   d->shift = c[0];
   d->stageTime = t1;
   PetscCall(TSPreStage(ts, t1));
@@ -123,7 +123,7 @@ PetscErrorCode step(TS ts) {
     const size_t m = std::min<size_t>(k + 1, d->times.size());
     const std::vector<double> c = math::lagrangeValues({d->times.begin(), d->times.begin() + m}, t1);
     PetscCall(VecSet(Y, 0.0));
-    for (size_t j = 0; j < m; ++j) PetscCall(VecAXPY(Y, c[j], d->states[j]));
+    PetscCall(VecMAXPY(Y, static_cast<PetscInt>(m), c.data(), d->states.data()));
     PetscCall(solveStage(ts, t1, k, Y, &ok));
   }
   if (!ok) {  // a fixed step: the failure ends the run (TSSetMaxSNESFailures); the state stays y_n

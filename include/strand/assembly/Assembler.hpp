@@ -8,6 +8,7 @@
 #pragma once
 #include <petscmat.h>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -118,6 +119,8 @@ private:
   // rank has ghosts (one rank): a scatter costs 1.4 us, 8 per step of a small dynamic run.
   PetscErrorCode updateGhosts(Vec work);
   PetscErrorCode addGhostsToOwners(Vec work);
+  // R = the owned sum of add(x, w, r) over the ghosted local forms of X and W (joint terms).
+  PetscErrorCode jointVector(Vec X, Vec W, const std::function<void(const double*, const double*, double*)>& add, Vec R);
   PetscErrorCode assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R, SupportRows rows);
   PetscErrorCode assembleWithSupportDiagonal(Mat J) const;
 

@@ -69,10 +69,11 @@ private:
   PetscInt _n = 0, _rstart = 0;
   std::vector<PetscInt> _ranges;  // second-order ownership ranges
   std::vector<char> _supportedRow, _multiplierRow;  // owned rows
-  Vec _supported, _multipliers;   // borrowed
-  Vec _free = nullptr, _body = nullptr, _w = nullptr, _atol = nullptr, _rtol = nullptr;
+  // masks of the second-order layout: free rows, free multiplier rows, and 1 - the latter
+  Vec _free = nullptr, _multiplierRows = nullptr, _otherRows = nullptr, _w = nullptr;
+  Vec _atol = nullptr, _rtol = nullptr;
   Mat _K = nullptr, _D = nullptr, _M = nullptr, _C = nullptr, _dC = nullptr, _J = nullptr;
-  Vec _a[2] = {nullptr, nullptr}, _b[2] = {nullptr, nullptr}, _c[2] = {nullptr, nullptr};
+  Vec _a[2] = {nullptr, nullptr}, _c[2] = {nullptr, nullptr};  // views of the halves of a state and a residual
 };
 
 }  // namespace strand::solvers
