@@ -6,6 +6,7 @@
 // or the time and step (dynamics).
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -48,6 +49,18 @@ std::string outputPath(const model::SceneDescription& scene) {
 }
 
 namespace {
+
+// The rotation vector theta (axis times angle, world frame) of R = A A0^T, the rotation of a 3D rigid
+// body since t = 0, from its frame blocks a_k (3 x 3 consecutive) now (a) and at t = 0 (a0).
+void incrementalRotation(const double* a0, const double* a, double* theta) {
+  double R[3][3] = {};
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) R[i][j] += a[3 * k + i] * a0[3 * k + j];
+  const double c = std::clamp(0.5 * (R[0][0] + R[1][1] + R[2][2] - 1.0), -1.0, 1.0), angle = std::acos(c);
+  const double w[3] = {R[2][1] - R[1][2], R[0][2] - R[2][0], R[1][0] - R[0][1]}, s = std::sin(angle);
+  for (int i = 0; i < 3; ++i) theta[i] = s > 1e-12 ? 0.5 * angle / s * w[i] : 0.5 * w[i];
+}
 
 bool hasLoads(const model::SceneDescription& s) {
   auto nz = [](const model::Vec3& v) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; };
@@ -176,6 +189,8 @@ private:
     // next dt_out time (a restart starts with the first multiple at or after its time)
     double nextOut = d.dtOut > 0.0 && !_restart.scalars.empty() ? std::ceil(_restart.scalars.at("time") / d.dtOut - 1e-9) * d.dtOut : 0.0;
     const auto& rigid = _problem.model().rigidBodies();
+    const int dim = _problem.model().dim();
+    const std::vector<double>& q0 = _problem.model().initialCoordinates();
     auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec Vs) -> PetscErrorCode {
       PetscFunctionBeginUser;
       _newtonTotal += s.newtonIterations;
@@ -201,7 +216,21 @@ private:
         PetscCallCXX(_writer->writeScalarSeries("constraint_position", s.constraintPosition));
         PetscCallCXX(_writer->writeScalarSeries("constraint_velocity", s.constraintVelocity));
       }
-      if (!rigid.empty()) {  // x, y, phi of every rigid body, every step
+      if (!rigid.empty() && dim == 3) {  // x, y, z and the rotation vector since t = 0, every step
+        std::vector<double> q;
+        PetscCall(_problem.assembler().gatherToRoot(Xs, q));
+        for (const model::RigidBody& rb : rigid) {
+          double x[3] = {0.0, 0.0, 0.0}, theta[3] = {0.0, 0.0, 0.0};
+          if (!q.empty()) {
+            for (int i = 0; i < 3; ++i) x[i] = q[3 * rb.posBlock + i];
+            incrementalRotation(&q0[3 * rb.rotBlock], &q[3 * rb.rotBlock], theta);
+          }
+          for (int i = 0; i < 3; ++i) {
+            PetscCallCXX(_writer->writeScalarSeries("rigid_" + rb.name + "_" + "xyz"[i], x[i]));
+            PetscCallCXX(_writer->writeScalarSeries("rigid_" + rb.name + "_theta_" + "xyz"[i], theta[i]));
+          }
+        }
+      } else if (!rigid.empty()) {  // x, y, phi of every rigid body, every step
         std::vector<double> q;
         PetscCall(_problem.assembler().gatherToRoot(Xs, q));
         for (const model::RigidBody& rb : rigid) {

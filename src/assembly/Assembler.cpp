@@ -29,8 +29,8 @@ struct Assembler::Impl {
   virtual ~Impl() = default;
   virtual void residual(const double* x, const double* v, double loadFactor, double* r) const = 0;
   virtual PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const = 0;
-  virtual PetscErrorCode dynamicJacobian(const double* x, const double* v, double shiftV, double shiftA, Mat J,
-                                         Mat Dmat, const std::vector<char>& fixed) const = 0;
+  virtual PetscErrorCode dynamicJacobian(const double* x, const double* v, double loadFactor, double shiftV,
+                                         double shiftA, Mat J, Mat Dmat, const std::vector<char>& fixed) const = 0;
   virtual PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const = 0;
   virtual PetscErrorCode gyroscopic(Mat G, const std::vector<char>& fixed) const = 0;
   virtual double strainEnergy(const double* x) const = 0;
@@ -179,6 +179,13 @@ public:
       maskFixed(static_cast<int>(k), fixed, K);
       PetscCall(MatSetValuesBlocked(J, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], K, ADD_VALUES));
     }
+    PetscCall(momentTangents(x, loadFactor, J, fixed));
+    PetscFunctionReturn(0);
+  }
+
+  // J += -loadFactor dQ/de of the nodal moments (they follow the slope).
+  PetscErrorCode momentTangents(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const {
+    PetscFunctionBeginUser;
     for (const auto& ml : _moments) {
       double Q[D], dQ[D * D], e[D];
       slopeOf(ml.localBlock, x, e);
@@ -196,8 +203,8 @@ public:
 
   // Dynamic tangent K + shiftV D + shiftA M (K = df_int/du, D = df_int/dv, consistent mass M):
   // one pass over the elements for the Newton matrix of an implicit integrator.
-  PetscErrorCode dynamicJacobian(const double* x, const double* v, double shiftV, double shiftA, Mat J, Mat Dmat,
-                                 const std::vector<char>& fixed) const override {
+  PetscErrorCode dynamicJacobian(const double* x, const double* v, double loadFactor, double shiftV, double shiftA,
+                                 Mat J, Mat Dmat, const std::vector<char>& fixed) const override {
     PetscFunctionBeginUser;
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
@@ -221,6 +228,7 @@ public:
       maskFixed(static_cast<int>(k), fixed, K);
       PetscCall(MatSetValuesBlocked(J, 4, gb, 4, gb, K, ADD_VALUES));
     }
+    PetscCall(momentTangents(x, loadFactor, J, fixed));
     PetscFunctionReturn(0);
   }
 
@@ -446,7 +454,7 @@ PetscErrorCode Assembler::saddleMatrix(Vec X, Mat S) {
   PetscCall(MatZeroEntries(S));
   PetscCall(_impl->mass(S, _fixedLocal));
   PetscCall(_multibody->mass(S, _fixedLocal));
-  PetscCall(_multibody->jacobian(x, 1.0, 0.0, S, _fixedLocal, true));
+  PetscCall(_multibody->jacobian(x, 1.0, 0.0, 0.0, S, _fixedLocal, true));
   PetscCall(endLocal(_xWork, &xl, &x));
   PetscCall(assembleWithSupportDiagonal(S));
   PetscFunctionReturn(0);
@@ -580,7 +588,7 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
   PetscCall(VecSet(rl, 0.0));
   PetscCall(VecGetArray(rl, &r));
   PetscCallCXX(_impl->residual(x, v, loadFactor, r));
-  PetscCallCXX(_multibody->residual(x, _constraintScale, r));
+  PetscCallCXX(_multibody->residual(x, _constraintScale, loadFactor, r));
   PetscCall(VecRestoreArray(rl, &r));
   PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
   PetscCall(addGhostsToOwners(_rWork));
@@ -618,14 +626,14 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   PetscCall(beginLocal(X, _xWork, &xl, &x));
   PetscCall(MatZeroEntries(J));
   PetscCall(_impl->jacobian(x, loadFactor, J, _fixedLocal));
-  PetscCall(_multibody->jacobian(x, _constraintScale, 0.0, J, _fixedLocal));
+  PetscCall(_multibody->jacobian(x, _constraintScale, 0.0, loadFactor, J, _fixedLocal));
   PetscCall(endLocal(_xWork, &xl, &x));
   PetscCall(assembleWithSupportDiagonal(J));
   PetscCall(PetscLogEventEnd(evJacobian, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D) {
+PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evDynJacobian, 0, 0, 0, 0));
   Vec xl, vl = nullptr;
@@ -635,8 +643,9 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscR
   if (V) PetscCall(beginLocal(V, _vWork, &vl, &v));
   PetscCall(MatZeroEntries(J));
   if (D) PetscCall(MatZeroEntries(D));
-  PetscCall(_impl->dynamicJacobian(x, v, shiftV, shiftA, J, D, _fixedLocal));
-  PetscCall(_multibody->jacobian(x, _constraintScale, shiftA, J, _fixedLocal));
+  const double loadFactor = _model.loadFactor(t);
+  PetscCall(_impl->dynamicJacobian(x, v, loadFactor, shiftV, shiftA, J, D, _fixedLocal));
+  PetscCall(_multibody->jacobian(x, _constraintScale, shiftA, loadFactor, J, _fixedLocal));
   PetscCall(endLocal(_xWork, &xl, &x));
   if (V) PetscCall(endLocal(_vWork, &vl, &v));
   PetscCall(assembleWithSupportDiagonal(J));

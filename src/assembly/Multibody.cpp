@@ -10,7 +10,7 @@ using elements::ConstraintEq;
 using elements::kMaxJointCoordinates;
 
 namespace {
-constexpr int kMaxBlocks = 6;     // a clamp: two multiplier blocks and four coordinate blocks
+constexpr int kMaxBlocks = 10;  // a 3D clamp to a rigid body: two multiplier, four body and two cable blocks
 
 int equations(const ConstraintEq& e, int D) {
   return D == 2 ? Constraint<2>::equations(e) : Constraint<3>::equations(e);
@@ -45,10 +45,24 @@ Multibody::JointState Multibody::state(int k, const double* x) const {
 
 bool Multibody::isJoint(int k) const { return _model.couplings()[_dofs.localCouplings()[k]].joint >= 0; }
 
-void Multibody::residual(const double* x, double scale, double* r) const {
+void Multibody::residual(const double* x, double scale, double loadFactor, double* r) const {
   const int D = _model.dim();
   for (int k = 0; k < static_cast<int>(_dofs.localCouplings().size()); ++k) {
-    if (!isJoint(k)) continue;
+    if (!isJoint(k)) {
+      const model::RigidBody& rb = _model.rigidBodies()[_model.couplings()[_dofs.localCouplings()[k]].rigidBody];
+      if (D == 2 || loadFactor == 0.0) continue;
+      const double* t = rb.torque.data();
+      const PetscInt* lb = &_dofs.couplingLocalBlocks()[_dofs.couplingOffset()[k]];
+      for (int a = 1; a < 4; ++a) {  // r -= loadFactor 1/2 tau x a_k
+        double e[3];
+        for (int i = 0; i < 3; ++i) e[i] = _q0[lb[a] * 3 + i] + x[lb[a] * 3 + i];
+        double* ra = &r[lb[a] * 3];
+        ra[0] -= 0.5 * loadFactor * (t[1] * e[2] - t[2] * e[1]);
+        ra[1] -= 0.5 * loadFactor * (t[2] * e[0] - t[0] * e[2]);
+        ra[2] -= 0.5 * loadFactor * (t[0] * e[1] - t[1] * e[0]);
+      }
+      continue;
+    }
     const JointState s = state(k, x);
     for (int e = 0; e < s.joint->count; ++e) {
       r[s.lb[e / D] * D + e % D] += scale * s.g[e];
@@ -57,8 +71,8 @@ void Multibody::residual(const double* x, double scale, double* r) const {
   }
 }
 
-PetscErrorCode Multibody::jacobian(const double* x, double scale, double shiftA, Mat J, const std::vector<char>& fixed,
-                                   bool gradientsOnly) const {
+PetscErrorCode Multibody::jacobian(const double* x, double scale, double shiftA, double loadFactor, Mat J,
+                                   const std::vector<char>& fixed, bool gradientsOnly) const {
   PetscFunctionBeginUser;
   const int D = _model.dim();
   const auto& local = _dofs.localCouplings();
@@ -71,6 +85,7 @@ PetscErrorCode Multibody::jacobian(const double* x, double scale, double shiftA,
     std::fill(Ke, Ke + N * N, 0.0);
     if (c.rigidBody >= 0) {
       rigidMass(c.rigidBody, shiftA, Ke);
+      if (!gradientsOnly) torqueStiffness(c.rigidBody, loadFactor, Ke);
     } else {
       const JointState s = state(k, x);
       const int L = N - s.n;  // multiplier coordinates come first
@@ -97,11 +112,31 @@ PetscErrorCode Multibody::jacobian(const double* x, double scale, double shiftA,
   PetscFunctionReturn(0);
 }
 
-// s diag(m, m, J, 0) over the blocks (x, y), (phi, unused): 4 x 4, row-major.
+// 2D: s diag(m, m, J, 0) over the blocks (x, y), (phi, unused), 4 x 4. 3D: s diag(m I, Jbar (x) I)
+// over r, a_1, a_2, a_3, 12 x 12. Row-major.
 void Multibody::rigidMass(int body, double s, double* Ke) const {
   const model::RigidBody& rb = _model.rigidBodies()[body];
-  Ke[0 * 4 + 0] = Ke[1 * 4 + 1] = s * rb.mass;
-  Ke[2 * 4 + 2] = s * rb.inertia;
+  if (_model.dim() == 2) {
+    Ke[0 * 4 + 0] += s * rb.mass;
+    Ke[1 * 4 + 1] += s * rb.mass;
+    Ke[2 * 4 + 2] += s * rb.inertia;
+    return;
+  }
+  for (int i = 0; i < 3; ++i) Ke[i * 12 + i] += s * rb.mass;
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l)
+      for (int i = 0; i < 3; ++i) Ke[(3 + 3 * k + i) * 12 + 3 + 3 * l + i] += s * rb.frameInertia[3 * k + l];
+}
+
+// d(-1/2 tau x a_k)/da_k = -1/2 [tau]x on each axis block.
+void Multibody::torqueStiffness(int body, double loadFactor, double* Ke) const {
+  const model::RigidBody& rb = _model.rigidBodies()[body];
+  if (_model.dim() == 2 || loadFactor == 0.0) return;
+  const double* t = rb.torque.data();
+  const double W[9] = {0, -t[2], t[1], t[2], 0, -t[0], -t[1], t[0], 0};
+  for (int k = 1; k < 4; ++k)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Ke[(3 * k + i) * 12 + 3 * k + j] -= 0.5 * loadFactor * W[i * 3 + j];
 }
 
 PetscErrorCode Multibody::mass(Mat M, const std::vector<char>& fixed) const {
@@ -112,11 +147,13 @@ PetscErrorCode Multibody::mass(Mat M, const std::vector<char>& fixed) const {
     if (c.rigidBody < 0) continue;
     const PetscInt* lb = &_dofs.couplingLocalBlocks()[_dofs.couplingOffset()[k]];
     const PetscInt* gb = &_dofs.couplingGlobalBlocks()[_dofs.couplingOffset()[k]];
-    double Ke[16] = {};
+    const int D = _model.dim(), nb = static_cast<int>(c.blocks.size()), N = nb * D;
+    double Ke[12 * 12] = {};
     rigidMass(c.rigidBody, 1.0, Ke);
-    for (int i = 0; i < 4; ++i)
-      if (fixed[lb[i / 2] * 2 + i % 2]) Ke[i * 4 + i] = 0.0;
-    PetscCall(MatSetValuesBlocked(M, 2, gb, 2, gb, Ke, ADD_VALUES));
+    for (int i = 0; i < N; ++i)
+      if (fixed[lb[i / D] * D + i % D])
+        for (int m = 0; m < N; ++m) Ke[i * N + m] = Ke[m * N + i] = 0.0;
+    PetscCall(MatSetValuesBlocked(M, nb, gb, nb, gb, Ke, ADD_VALUES));
   }
   PetscFunctionReturn(0);
 }

@@ -1,7 +1,8 @@
 // Rigid bodies and joints in the assembly (internal to the Assembler; design section 3).
 //
-// Rigid bodies add their constant mass diag(m, m, J); their weight and applied loads are nodal
-// forces of the model. A joint with equations g(q) = 0 and multipliers lambda = s mu adds
+// Rigid bodies add their constant mass (2D diag(m, m, J); 3D diag(m I, Jbar (x) I) on natural
+// coordinates, model::RigidBody); their weight and applied forces are nodal forces of the model,
+// a 3D body's torque the configuration-dependent force 1/2 tau x a_k on its axes (assembled here). A joint with equations g(q) = 0 and multipliers lambda = s mu adds
 //   rows of its coordinates:  s G^T mu          (the constraint force, G = dg/dq),
 //   rows of its multipliers:  s g(q),
 // and to the Newton matrix s H(mu) = s sum_k mu_k d^2 g_k/dq^2, s G^T and s G. The scale s is the
@@ -22,13 +23,15 @@ public:
   Multibody(const model::Model& model, const model::DofMap& dofs, const std::vector<double>& q0Local);
   bool empty() const { return _dofs.localCouplings().empty(); }
 
-  // r += joint terms (ghosted-local arrays; x holds displacements and mu).
-  void residual(const double* x, double scale, double* r) const;
-  // J += s H, s G^T, s G of the joints and shiftA M of the rigid bodies (rows and columns of fixed
-  // DOFs left out; gradientsOnly: no Hessian term, the saddle matrix of the initial state).
-  PetscErrorCode jacobian(const double* x, double scale, double shiftA, Mat J, const std::vector<char>& fixed,
-                          bool gradientsOnly = false) const;
-  // M += diag(m, m, J) of the rigid bodies (fixed rows and columns left out).
+  // r += joint terms and - loadFactor Q of 3D torques (ghosted-local arrays; x holds displacements
+  // and mu).
+  void residual(const double* x, double scale, double loadFactor, double* r) const;
+  // J += s H, s G^T, s G of the joints, shiftA M of the rigid bodies and - loadFactor dQ/dq of 3D
+  // torques (rows and columns of fixed DOFs left out; gradientsOnly: only s G^T and s G, the saddle
+  // matrix of the initial state).
+  PetscErrorCode jacobian(const double* x, double scale, double shiftA, double loadFactor, Mat J,
+                          const std::vector<char>& fixed, bool gradientsOnly = false) const;
+  // M += the rigid bodies' mass matrices (fixed rows and columns left out).
   PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const;
   // r (multiplier rows) += v^T d^2 g_k/dq^2 v: the velocity term of the acceleration-level
   // constraint G a + (dG/dq v) v = 0.
@@ -61,7 +64,10 @@ private:
   // Adds a joint's element matrix (N x N over its blocks, multipliers first) with fixed rows and
   // columns zeroed.
   PetscErrorCode addJointMatrix(int localCoupling, double* Ke, Mat J, const std::vector<char>& fixed) const;
+  // Ke (N x N over the body's blocks) += s M of a rigid body; torqueStiffness: += - loadFactor dQ/dq
+  // of a 3D body's torque.
   void rigidMass(int body, double s, double* Ke) const;
+  void torqueStiffness(int body, double loadFactor, double* Ke) const;
 
   const model::Model& _model;
   const model::DofMap& _dofs;

@@ -832,11 +832,13 @@ private:
         if (!d.adaptive) t.fail("only used with integrator: bdf and adaptive: true");
         (std::string(key) == "rtol" ? d.rtol : d.atol) = requirePositive(t);
       }
-    if (model::isExplicit(d.integrator) && !scene_.joints.empty())
-      integrator.fail("explicit integrators (rk4, abm4) take problems without joints (no Lagrange multipliers); "
-                      "use generalized_alpha with rho_inf <= 0.9 or bdf for scenes with joints");
+    // 3D rigid bodies carry the orthonormality equations of their frame: constraints too
+    const bool constrained = !scene_.joints.empty() || (ctx_.dim == 3 && !scene_.rigidBodies.empty());
+    if (model::isExplicit(d.integrator) && constrained)
+      integrator.fail("explicit integrators (rk4, abm4) take problems without joints (no Lagrange multipliers; a 3D "
+                      "rigid body's frame is held by six); use generalized_alpha with rho_inf <= 0.9 or bdf for scenes with joints");
     if (const Field c = f.child("constraint_form"); c.present()) {
-      if (d.integrator != model::Integrator::Bdf || scene_.joints.empty())
+      if (d.integrator != model::Integrator::Bdf || !constrained)
         c.fail("only used by integrator: bdf in a scene with joints");
       d.constraintForm = pick(c, "constraint form", kConstraintForms).value;
     }
@@ -971,12 +973,16 @@ private:
     return ref;
   }
 
-  // rigid_bodies: planar rigid bodies (dimension 2).
+  // rigid_bodies: 2D (x, y, phi) or 3D (centre of mass and body axes; angles and vectors in 3D).
   void readRigidBodies(const Field& f) {
+    const int D = ctx_.dim;
     for (const Field& item : f.items()) {
-      item.expectMap({"name", "mass", "inertia", "position", "angle", "velocity", "angular_velocity", "force",
-                      "torque", "fixed", "rotation"});
-      if (ctx_.dim != 2) item.fail("rigid bodies are planar in this version: use dimension: 2");
+      if (D == 2)
+        item.expectMap({"name", "mass", "inertia", "position", "angle", "velocity", "angular_velocity", "force",
+                        "torque", "fixed", "rotation"});
+      else
+        item.expectMap({"name", "mass", "inertia", "position", "angle", "axis", "velocity", "angular_velocity",
+                        "force", "torque", "fixed"});
       model::RigidBodyDesc r;
       r.mark = item.mark();
       r.name = item.child("name").text();
@@ -985,18 +991,30 @@ private:
       for (const model::RigidBodyDesc& o : scene_.rigidBodies)
         if (o.name == r.name) item.child("name").fail("duplicate rigid body name '" + r.name + "'");
       r.mass = requirePositive(item.child("mass"));
-      r.inertia = requirePositive(item.child("inertia"));
-      r.position = readVector(item.child("position"), 2);
+      if (D == 2) r.inertia = requirePositive(item.child("inertia"));
+      else r.principalInertia = readPrincipalInertia(item.child("inertia"));
+      r.position = readVector(item.child("position"), D);
       if (const Field a = item.child("angle"); a.present()) r.angle = a.number();
-      if (const Field v = item.child("velocity"); v.present()) r.velocity = readVector(v, 2);
-      if (const Field w = item.child("angular_velocity"); w.present()) r.angularVelocity = w.number();
-      if (const Field F = item.child("force"); F.present()) r.force = readVector(F, 2);
-      if (const Field t = item.child("torque"); t.present()) r.torque = t.number();
+      if (const Field ax = item.child("axis"); ax.present()) {
+        r.axis = readVector(ax, 3);
+        if (r.axis[0] == 0.0 && r.axis[1] == 0.0 && r.axis[2] == 0.0) ax.fail("the rotation axis must not be zero");
+      }
+      if (const Field v = item.child("velocity"); v.present()) r.velocity = readVector(v, D);
+      if (const Field w = item.child("angular_velocity"); w.present()) {
+        if (D == 2) r.angularVelocity[2] = w.number();
+        else r.angularVelocity = readVector(w, 3);
+      }
+      if (const Field F = item.child("force"); F.present()) r.force = readVector(F, D);
+      if (const Field t = item.child("torque"); t.present()) {
+        if (D == 2) r.torque[2] = t.number();
+        else r.torque = readVector(t, 3);
+      }
       if (const Field fx = item.child("fixed"); fx.present()) {
         for (const Field& e : fx.items()) {
           const std::string c = e.text();
-          const int k = c == "x" ? 0 : c == "y" ? 1 : c == "phi" ? 2 : -1;
-          if (k < 0) e.fail("unknown coordinate '" + c + "'; allowed: x, y, phi");
+          const int k = c == "x" ? 0 : c == "y" ? 1 : (D == 2 && c == "phi") || (D == 3 && c == "z") ? 2 : -1;
+          if (k < 0)
+            e.fail("unknown coordinate '" + c + (D == 2 ? "'; allowed: x, y, phi" : "'; allowed: x, y, z (a 3D body's orientation is held by joints)"));
           if (std::find(r.fixed.begin(), r.fixed.end(), k) != r.fixed.end()) e.fail("listed twice");
           r.fixed.push_back(k);
         }
@@ -1014,7 +1032,22 @@ private:
     }
   }
 
-  // One end of a joint: {ground: [x, y(, z)]}, {body: <cable>, node: i}, {body: <rigid>, point: [x, y]}.
+  // 3D principal moments of inertia [I1, I2, I3] about the body axes: positive, and each below the
+  // sum of the other two (I1 < I2 + I3 ...: a real mass distribution; equality is a line of mass,
+  // whose spin about its own axis has no inertia and leaves the mass matrix singular).
+  static model::Vec3 readPrincipalInertia(const Field& f) {
+    const model::Vec3 I = readVector(f, 3);
+    for (int k = 0; k < 3; ++k)
+      if (!(I[k] > 0.0)) f.fail("3D principal moments of inertia must be positive (got " + fmt(I[k]) + ")");
+    for (int k = 0; k < 3; ++k)
+      if (!(I[k] < I[(k + 1) % 3] + I[(k + 2) % 3]))
+        f.fail("moment I" + std::to_string(k + 1) + " = " + fmt(I[k]) +
+               " is not below the sum of the other two; no mass distribution has these moments "
+               "(a thin rod's are [0, I, I]: give its spin axis a small moment)");
+    return I;
+  }
+
+  // One end of a joint: {ground: [x, y(, z)]}, {body: <cable>, node: i}, {body: <rigid>, point: [x, y(, z)]}.
   model::JointEndDesc readJointEnd(const Field& f) const {
     f.expectMap({"ground", "body", "node", "point"});
     model::JointEndDesc e;
@@ -1033,7 +1066,7 @@ private:
         if (f.child("node").present()) f.child("node").fail("'" + name + "' is a rigid body: give 'point' (body frame)");
         e.kind = model::JointEndDesc::Kind::RigidPoint;
         e.body = name;
-        if (const Field p = f.child("point"); p.present()) e.point = readVector(p, 2);
+        if (const Field p = f.child("point"); p.present()) e.point = readVector(p, ctx_.dim);
         return e;
       }
     if (f.child("point").present()) f.child("point").fail("'point' is for rigid bodies; a cable end is a 'node'");

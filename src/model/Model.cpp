@@ -58,6 +58,22 @@ std::vector<double> constraintValues(const std::vector<elements::ConstraintEq>& 
   return g;
 }
 
+// Rodrigues: the rotation by `angle` about `axis` (normalized here), row-major.
+std::array<double, 9> rotationMatrix(const Vec3& axis, double angle) {
+  const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  const double e[3] = {axis[0] / len, axis[1] / len, axis[2] / len}, c = std::cos(angle), s = std::sin(angle);
+  std::array<double, 9> R{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[i * 3 + j] = (i == j ? c : 0.0) + (1.0 - c) * e[i] * e[j];
+  R[0 * 3 + 1] -= s * e[2];
+  R[0 * 3 + 2] += s * e[1];
+  R[1 * 3 + 0] += s * e[2];
+  R[1 * 3 + 2] -= s * e[0];
+  R[2 * 3 + 0] -= s * e[1];
+  R[2 * 3 + 1] += s * e[0];
+  return R;
+}
+
 }  // namespace
 
 Model::Model(const SceneDescription& scene)
@@ -124,15 +140,26 @@ Model::Model(const SceneDescription& scene)
     for (int& blk : b.slopeBlock) blk = compact[root(blk)];
   }
   _numBlocks = next;
-  // rigid bodies: position block, rotation block (phi, unused); joints: their multiplier blocks
+  // rigid bodies: 2D position block, rotation block (phi, unused); 3D centre of mass and three
+  // frame blocks. Joints: their multiplier blocks (the scene's, then the 3D bodies' frames)
   std::map<std::string, int> rigidIndex;
   for (const RigidBodyDesc& rd : scene.rigidBodies) {
-    if (_dim != 2) throw InputError(rd.mark.where() + ": rigid bodies are planar (dimension: 2) in this version");
     if (bodyIndex.count(rd.name) || rigidIndex.count(rd.name))
       throw InputError(rd.mark.where() + ": the name '" + rd.name + "' is already used by another body");
     rigidIndex[rd.name] = static_cast<int>(_rigid.size());
-    _rigid.push_back({rd.name, rd.mass, rd.inertia, _numBlocks, _numBlocks + 1});
-    _numBlocks += 2;
+    RigidBody rb;
+    rb.name = rd.name;
+    rb.mass = rd.mass;
+    rb.inertia = rd.inertia;
+    rb.posBlock = _numBlocks;
+    rb.rotBlock = _numBlocks + 1;
+    if (_dim == 3) {  // Jbar = 1/2 tr(I) 1 - I for principal body axes
+      const Vec3& I = rd.principalInertia;
+      for (int k = 0; k < 3; ++k) rb.frameInertia[4 * k] = 0.5 * (I[0] + I[1] + I[2]) - I[k];
+      rb.torque = rd.torque;
+    }
+    _numBlocks += rb.blocks(_dim);
+    _rigid.push_back(rb);
   }
   std::vector<int> jointCount;
   for (const JointDesc& jd : scene.joints) {
@@ -141,6 +168,34 @@ Model::Model(const SceneDescription& scene)
     j.label = jd.mark.where();
     j.count = count;
     for (int k = 0; k < (count + _dim - 1) / _dim; ++k) j.lambdaBlocks.push_back(_numBlocks++);
+    _joints.push_back(std::move(j));
+  }
+  for (size_t r = 0; r < _rigid.size() && _dim == 3; ++r) {
+    // a_k . a_k = 1 as |a_k| - 1 = 0 (Distance to the origin), a_k . a_l = 0 (Orthogonal)
+    Joint j;
+    j.label = scene.rigidBodies[r].mark.where() + " (orthonormal body frame)";
+    j.count = 6;
+    const int a = _rigid[r].rotBlock;
+    j.blocks = {a, a + 1, a + 2};
+    for (int k = 0; k < 3; ++k) {
+      elements::ConstraintEq unit;
+      unit.form = elements::ConstraintForm::Distance;
+      unit.a.kind = elements::JointField::Kind::Block;
+      unit.a.block = k;
+      unit.length = 1.0;
+      j.equations.push_back(unit);
+    }
+    for (int k = 0; k < 3; ++k) {
+      elements::ConstraintEq normal;
+      normal.form = elements::ConstraintForm::Orthogonal;
+      normal.a.kind = normal.b.kind = elements::JointField::Kind::Block;
+      normal.a.block = k;
+      normal.b.block = (k + 1) % 3;
+      j.equations.push_back(normal);
+    }
+    j.lambdaBlocks = {_numBlocks, _numBlocks + 1};
+    _numBlocks += 2;
+    _rigid[r].frameJoint = static_cast<int>(_joints.size());
     _joints.push_back(std::move(j));
   }
   // 3. initial coordinates; junction nodes must coincide
@@ -166,13 +221,23 @@ Model::Model(const SceneDescription& scene)
   }
   for (size_t r = 0; r < _rigid.size(); ++r) {
     const RigidBodyDesc& rd = scene.rigidBodies[r];
-    for (int i = 0; i < 2; ++i) _q0[_rigid[r].posBlock * 2 + i] = rd.position[i];
-    _q0[_rigid[r].rotBlock * 2] = rd.angle;
+    for (int i = 0; i < _dim; ++i) _q0[_rigid[r].posBlock * _dim + i] = rd.position[i];
+    if (_dim == 2) {
+      _q0[_rigid[r].rotBlock * 2] = rd.angle;
+      continue;
+    }
+    const std::array<double, 9> A = rotationMatrix(rd.axis, rd.angle);  // a_k = column k
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) _q0[(_rigid[r].rotBlock + k) * 3 + i] = A[i * 3 + k];
   }
   // 4. supports
   _fixed.assign(numDofs(), 0);
   _multiplier.assign(numDofs(), 0);
   for (size_t r = 0; r < _rigid.size(); ++r) {
+    if (_dim == 3) {  // x, y, z of the centre of mass (the frame is free)
+      for (int c : scene.rigidBodies[r].fixed) _fixed[_rigid[r].posBlock * 3 + c] = 1;
+      continue;
+    }
     _fixed[_rigid[r].rotBlock * 2 + 1] = 1;  // the unused coordinate of the rotation block
     for (int c : scene.rigidBodies[r].fixed) _fixed[(c < 2 ? _rigid[r].posBlock * 2 + c : _rigid[r].rotBlock * 2)] = 1;
     if (scene.rigidBodies[r].driven) {  // phi = angle + rotation(t): the unknown u = rotation(t)
@@ -234,12 +299,23 @@ Model::Model(const SceneDescription& scene)
   for (size_t r = 0; r < _rigid.size(); ++r) {
     const RigidBodyDesc& rd = scene.rigidBodies[r];
     const RigidBody& rb = _rigid[r];
-    for (int i = 0; i < 2; ++i) {
-      _nodalForce[rb.posBlock * 2 + i] += rd.mass * _gravity[i] + rd.force[i];
-      _v0[rb.posBlock * 2 + i] = rd.velocity[i];
+    for (int i = 0; i < _dim; ++i) {
+      _nodalForce[rb.posBlock * _dim + i] += rd.mass * _gravity[i] + rd.force[i];
+      _v0[rb.posBlock * _dim + i] = rd.velocity[i];
     }
-    _nodalForce[rb.rotBlock * 2] += rd.torque;
-    _v0[rb.rotBlock * 2] = rd.angularVelocity;
+    if (_dim == 2) {
+      _nodalForce[rb.rotBlock * 2] += rd.torque[2];
+      _v0[rb.rotBlock * 2] = rd.angularVelocity[2];
+      continue;
+    }
+    const Vec3& w = rd.angularVelocity;  // a_k' = w x a_k
+    for (int k = 0; k < 3; ++k) {
+      const double* a = &_q0[(rb.rotBlock + k) * 3];
+      double* da = &_v0[(rb.rotBlock + k) * 3];
+      da[0] = w[1] * a[2] - w[2] * a[1];
+      da[1] = w[2] * a[0] - w[0] * a[2];
+      da[2] = w[0] * a[1] - w[1] * a[0];
+    }
   }
   // initial velocities of cables: a rigid motion v = v_lin + w x (r - c), slopes w x r' (the slope
   // coordinates are sigma r', and so are their rates)
@@ -295,14 +371,14 @@ Model::Model(const SceneDescription& scene)
         const RigidBody& rb = _rigid[it->second];
         f.kind = elements::JointField::Kind::RigidPoint;
         f.block = addBlock(rb.posBlock);
-        addBlock(rb.rotBlock);
+        for (int k = 1; k < rb.blocks(_dim); ++k) addBlock(rb.posBlock + k);
         f.c = e.point;
         break;
       }
     }
     return f;
   };
-  for (size_t k = 0; k < _joints.size(); ++k) {
+  for (size_t k = 0; k < scene.joints.size(); ++k) {
     const JointDesc& jd = scene.joints[k];
     Joint& j = _joints[k];
     int slope = -1;
@@ -346,6 +422,13 @@ Model::Model(const SceneDescription& scene)
         if (jd.b.kind == JointEndDesc::Kind::Ground) {
           o.b.kind = elements::JointField::Kind::Constant;
           o.b.c = nrm;
+        } else if (_dim == 3) {  // the normal in the rigid body's frame: c_k = a_k(0) . n
+          o.b.kind = elements::JointField::Kind::RigidDirection;
+          o.b.block = eq.b.block + 1;
+          for (int a = 0; a < 3; ++a) {
+            const double* ak = &_q0[j.blocks[eq.b.block + 1 + a] * 3];
+            o.b.c[a] = ak[0] * nrm[0] + ak[1] * nrm[1] + ak[2] * nrm[2];
+          }
         } else {  // the normal in the rigid body's frame: R(phi0)^T n
           const double phi = _q0[j.blocks[eq.b.block + 1] * _dim], c = std::cos(phi), s = std::sin(phi);
           o.b.kind = elements::JointField::Kind::RigidDirection;
@@ -363,7 +446,11 @@ Model::Model(const SceneDescription& scene)
                          " (equation " + std::to_string(r) + "); place its ends together (pin, clamp) or omit `length` (distance)");
   }
   // 7. couplings: rigid bodies and joints
-  for (size_t r = 0; r < _rigid.size(); ++r) _couplings.push_back({static_cast<int>(r), -1, {_rigid[r].posBlock, _rigid[r].rotBlock}});
+  for (size_t r = 0; r < _rigid.size(); ++r) {
+    Coupling c{static_cast<int>(r), -1, {}};
+    for (int k = 0; k < _rigid[r].blocks(_dim); ++k) c.blocks.push_back(_rigid[r].posBlock + k);
+    _couplings.push_back(std::move(c));
+  }
   for (size_t k = 0; k < _joints.size(); ++k) {
     Coupling c{-1, static_cast<int>(k), _joints[k].lambdaBlocks};
     c.blocks.insert(c.blocks.end(), _joints[k].blocks.begin(), _joints[k].blocks.end());

@@ -148,12 +148,12 @@ PetscErrorCode ConstrainedStateSpace::fill(Mat A, PetscReal sigma) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ConstrainedStateSpace::jacobian(PetscReal, Vec Y, PetscReal shift, Mat* J) {
+PetscErrorCode ConstrainedStateSpace::jacobian(PetscReal t, Vec Y, PetscReal shift, Mat* J) {
   PetscFunctionBeginUser;
   const PetscScalar* y;
   PetscCall(VecGetArrayRead(Y, &y));
   PetscCall(place(_a, y));
-  PetscCall(_asm.dynamicJacobian(_a[0], _damped ? _a[1] : nullptr, 0.0, 0.0, _K, _damped ? _D : nullptr));
+  PetscCall(_asm.dynamicJacobian(_a[0], _damped ? _a[1] : nullptr, t, 0.0, 0.0, _K, _damped ? _D : nullptr));
   if (_form == Form::Ggl) PetscCall(_asm.constraintGradientMatrices(_a[0], _a[1], _C, _dC));
   PetscCall(reset(_a));
   PetscCall(VecRestoreArrayRead(Y, &y));

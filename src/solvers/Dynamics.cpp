@@ -303,11 +303,11 @@ PetscErrorCode Dynamics::formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Dynamics::formJacobian(TS, PetscReal, Vec U, Vec V, Vec, PetscReal shiftV, PetscReal shiftA, Mat J, Mat,
+PetscErrorCode Dynamics::formJacobian(TS, PetscReal t, Vec U, Vec V, Vec, PetscReal shiftV, PetscReal shiftA, Mat J, Mat,
                                       void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
-  PetscCall(self->_asm.dynamicJacobian(U, self->_damped ? V : nullptr, shiftV, shiftA, J));
+  PetscCall(self->_asm.dynamicJacobian(U, self->_damped ? V : nullptr, t, shiftV, shiftA, J));
   PetscFunctionReturn(0);
 }
 

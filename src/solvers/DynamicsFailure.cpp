@@ -33,7 +33,7 @@ std::string Dynamics::failureHint(const DynamicsStep&) const {
 // failure message of an explicit scheme, not a verified number).
 PetscErrorCode Dynamics::highestFrequency(Vec X, PetscReal* omega) {
   PetscFunctionBeginUser;
-  PetscCall(_asm.dynamicJacobian(X, nullptr, 0.0, 0.0, _J));  // K (unit rows at supports)
+  PetscCall(_asm.dynamicJacobian(X, nullptr, 0.0, 0.0, 0.0, _J));  // K at the initial loads (unit rows at supports)
   Vec z, w;
   PetscCall(VecDuplicate(X, &z));
   PetscCall(VecDuplicate(X, &w));

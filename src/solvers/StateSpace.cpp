@@ -182,14 +182,14 @@ PetscErrorCode StateSpace::iFunction(TS, PetscReal t, Vec Y, Vec Ydot, Vec F, vo
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode StateSpace::iJacobian(TS, PetscReal, Vec Y, Vec, PetscReal shift, Mat, Mat, void* ctx) {
+PetscErrorCode StateSpace::iJacobian(TS, PetscReal t, Vec Y, Vec, PetscReal shift, Mat, Mat, void* ctx) {
   PetscFunctionBeginUser;
   auto* s = static_cast<StateSpace*>(ctx);
   s->_sigma = shift;
   const PetscScalar* y;
   PetscCall(VecGetArrayRead(Y, &y));
   PetscCall(s->place(s->_a, y));
-  PetscCall(s->_asm.dynamicJacobian(s->_a.u, s->_damped ? s->_a.v : nullptr, shift, shift * shift, s->_reduced,
+  PetscCall(s->_asm.dynamicJacobian(s->_a.u, s->_damped ? s->_a.v : nullptr, t, shift, shift * shift, s->_reduced,
                                     s->_damped ? s->_D : nullptr));
   PetscCall(s->reset(s->_a));
   PetscCall(VecRestoreArrayRead(Y, &y));

@@ -100,6 +100,63 @@ inline model::SceneDescription rigidChain(int links, double l, double m) {
   return sc;
 }
 
+// A 3D damped cable (1 m along x, 4 elements, modulus E) pinned to the ground at node 0 with a
+// nodal moment at node 2, its tip clamped (position and slope direction) to a 3D rigid body "box"
+// carrying a torque, and a second, turned body "arm" pinned to the first; gravity -9.81 z. Every 3D
+// multibody term: natural-coordinate frames and their six orthonormality equations, body points
+// and directions, the torque's 1/2 tau x a_k, the moment's slope-following force.
+inline model::SceneDescription cableWithTwoBodies3d(double E) {
+  Section s;
+  s.E = E;
+  model::SceneDescription sc = cantilever(3, 4, 1.0, s);
+  sc.supports.clear();
+  sc.analysis = model::Analysis::Dynamic;
+  sc.loads.gravity = {0, 0, -9.81};
+  sc.bodies[0].dampAxial = sc.bodies[0].dampBending = 2e-3;
+  model::NodalLoadDesc moment;
+  moment.at.body = "beam";
+  moment.at.node = 2;
+  moment.moment = {0.1, 0.2, 0.3};
+  sc.loads.nodal.push_back(moment);
+  model::RigidBodyDesc box, arm;
+  box.name = "box";
+  box.mass = 0.5;
+  box.principalInertia = {2e-3, 3e-3, 4e-3};
+  box.position = {1.1, 0, 0};
+  box.torque = {0.3, -0.2, 0.5};
+  arm.name = "arm";
+  arm.mass = 0.2;
+  arm.principalInertia = {1e-3, 1.5e-3, 2e-3};
+  arm.position = {1.3, 0, 0};
+  arm.axis = {0.2, 0.3, 1.0};
+  arm.angle = 0.4;
+  sc.rigidBodies = {box, arm};
+  model::JointDesc root, tip, hinge;
+  root.a.kind = model::JointEndDesc::Kind::CableNode;
+  root.a.body = "beam";
+  root.a.node = 0;
+  root.b.kind = model::JointEndDesc::Kind::Ground;
+  tip.type = model::JointType::Clamp;
+  tip.a = root.a;
+  tip.a.node = -1;
+  tip.b.kind = model::JointEndDesc::Kind::RigidPoint;
+  tip.b.body = "box";
+  tip.b.point = {-0.1, 0, 0};
+  hinge.a.kind = hinge.b.kind = model::JointEndDesc::Kind::RigidPoint;
+  hinge.a.body = "box";
+  hinge.a.point = {0.1, 0, 0};
+  hinge.b.body = "arm";
+  {  // the arm's body-frame point at (1.2, 0, 0): R^T (-0.1, 0, 0), R the arm's initial turn
+    const double n = std::sqrt(0.2 * 0.2 + 0.3 * 0.3 + 1.0), e[3] = {0.2 / n, 0.3 / n, 1.0 / n};
+    const double c = std::cos(0.4), sn = std::sin(0.4);
+    // row 0 of R is R^T's column 0: R_00, R_01, R_02 -> (R^T x)_j = R_0j x_0
+    const double R0[3] = {c + (1 - c) * e[0] * e[0], (1 - c) * e[0] * e[1] - sn * e[2], (1 - c) * e[0] * e[2] + sn * e[1]};
+    for (int j = 0; j < 3; ++j) hinge.b.point[j] = -0.1 * R0[j];
+  }
+  sc.joints = {root, tip, hinge};
+  return sc;
+}
+
 inline void addTipLoad(model::SceneDescription& sc, model::Vec3 force, model::Vec3 moment = {0, 0, 0}) {
   model::NodalLoadDesc l;
   l.at.body = sc.bodies[0].name;

@@ -837,7 +837,7 @@ TEST(SceneReader, RigidBodiesAndJoints) {
   const model::SceneDescription s = parseScene(base, "scene.yaml");
   ASSERT_EQ(s.rigidBodies.size(), 1u);
   EXPECT_DOUBLE_EQ(s.rigidBodies[0].inertia, 0.5);
-  EXPECT_DOUBLE_EQ(s.rigidBodies[0].angularVelocity, 2.0);
+  EXPECT_DOUBLE_EQ(s.rigidBodies[0].angularVelocity[2], 2.0);
   EXPECT_EQ(s.rigidBodies[0].fixed, (std::vector<int>{0, 1}));
   ASSERT_EQ(s.joints.size(), 2u);
   EXPECT_EQ(s.joints[0].type, model::JointType::Clamp);
@@ -892,9 +892,33 @@ TEST(SceneReader, RigidBodiesAndJoints) {
                         "ggl"));
   EXPECT_TRUE(failsWith(edit(pinned, "rk4", "generalized_alpha, constraint_form: ggl"), 5, "dynamics.constraint_form",
                         "only used by integrator: bdf in a scene with joints"));
-  EXPECT_TRUE(failsWith("analysis: dynamic\ndimension: 3\nrigid_bodies: [{name: rod, mass: 1, inertia: 0.1, "
-                        "position: [0.5, 0, 0]}]\ndynamics: {dt: 1e-3, t_end: 1}\n",
-                        3, "rigid_bodies[0]", "rigid bodies are planar in this version"));
+}
+
+// 3D rigid bodies: principal inertia [I1, I2, I3] (a real mass distribution), orientation by angle
+// about axis, vectors in 3D; explicit integrators refuse them (their frame is held by multipliers).
+TEST(SceneReader, ThreeDimensionalRigidBodies) {
+  const std::string base =
+      "analysis: dynamic\ndimension: 3\n"
+      "rigid_bodies: [{name: top, mass: 2, inertia: [0.3, 0.3, 0.2], position: [0, 0, 0.1], angle: 0.5,\n"  // line 3
+      "                axis: [1, 0, 0], angular_velocity: [0, 0, 40], torque: [0, 0, 1], fixed: [x, y, z]}]\n"
+      "dynamics: {integrator: bdf, dt: 1e-3, t_end: 1}\n";  // line 5
+  const model::SceneDescription s = parseScene(base, "t.yaml");
+  ASSERT_EQ(s.rigidBodies.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.rigidBodies[0].principalInertia[2], 0.2);
+  EXPECT_DOUBLE_EQ(s.rigidBodies[0].axis[0], 1.0);
+  EXPECT_DOUBLE_EQ(s.rigidBodies[0].angularVelocity[2], 40.0);
+  EXPECT_DOUBLE_EQ(s.rigidBodies[0].torque[2], 1.0);
+  EXPECT_EQ(s.rigidBodies[0].fixed, (std::vector<int>{0, 1, 2}));
+  EXPECT_TRUE(failsWith(edit(base, "[0.3, 0.3, 0.2]", "[0.05, 0.3, 0.2]"), 3, "rigid_bodies[0].inertia",
+                        "I2 = 0.3 is not below the sum of the other two"));
+  EXPECT_TRUE(failsWith(edit(base, "[0.3, 0.3, 0.2]", "0.3"), 3, "rigid_bodies[0].inertia", ""));
+  EXPECT_TRUE(failsWith(edit(base, "axis: [1, 0, 0]", "axis: [0, 0, 0]"), 4, "rigid_bodies[0].axis", "must not be zero"));
+  EXPECT_TRUE(failsWith(edit(base, "fixed: [x, y, z]", "fixed: [x, phi]"), 4, "rigid_bodies[0].fixed[1]",
+                        "allowed: x, y, z"));
+  EXPECT_TRUE(failsWith(edit(base, "fixed: [x, y, z]", "rotation: {kind: ramp}"), 4, "rigid_bodies[0].rotation",
+                        "unknown key"));
+  EXPECT_TRUE(failsWith(edit(base, "integrator: bdf", "integrator: rk4"), 5, "dynamics.integrator",
+                        "a 3D rigid body's frame is held by six"));
 }
 
 // ------------------------------------------------------------------------------------------------

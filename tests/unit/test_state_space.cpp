@@ -200,11 +200,13 @@ TEST(StateSpace, ExplicitRateSolvesTheImplicitResidual) {
   VecDestroy(&F);
 }
 
+
 // BDF with joints (solvers/ConstrainedStateSpace.hpp): a damped cable pinned to the ground at one
-// end and to a rigid bob at the other (no supports but the bob's unused slot), and a rigid 3-link
+// end and to a rigid bob at the other (no supports but the bob's unused slot), a rigid 3-link
 // chain (only joint terms are nonlinear there, so the GGL terms H(mu~) and (H_k v)^T dominate the
-// remainder). Taylor test of the assembled 2n x 2n Newton matrix, both forms, with every unknown
-// perturbed (multipliers of both halves included): the remainder falls as e^2.
+// remainder), and a 3D cable with two rigid bodies (support/Scenes.hpp). Taylor test of the assembled 2n x 2n Newton matrix, both
+// forms, with every unknown perturbed (multipliers of both halves included): the remainder falls
+// as e^2.
 TEST(ConstrainedStateSpace, NewtonMatrixPassesTheTaylorTestOnBothForms) {
   MPI_Comm comm = PETSC_COMM_WORLD;
   model::SceneDescription sc = flexiblePendulum(2e-3, 1e8, 4);
@@ -225,7 +227,9 @@ TEST(ConstrainedStateSpace, NewtonMatrixPassesTheTaylorTestOnBothForms) {
   tip.b.body = "bob";
   tip.b.point = {-0.1, 0, 0};
   sc.joints = {root, tip};
-  for (const model::SceneDescription& scene : {sc, rigidChain(3, 0.4, 0.3)})
+  // the cable of the 3D scene is soft (E A = 0.1 N) so that its curvature leaves the loads' terms
+  // visible in the remainder: a wrong torque or moment tangent turns the ratio to 2
+  for (const model::SceneDescription& scene : {sc, rigidChain(3, 0.4, 0.3), cableWithTwoBodies3d(1e3)})
   for (auto form : {model::DynamicsDesc::ConstraintForm::Ggl, model::DynamicsDesc::ConstraintForm::Index3}) {
     solvers::Problem p(comm, scene);
     assembly::Assembler& a = p.assembler();
@@ -266,7 +270,7 @@ TEST(ConstrainedStateSpace, NewtonMatrixPassesTheTaylorTestOnBothForms) {
     PetscCallAbort(comm, MatMult(J, D, JD));
     expectTaylorRatios(
         comm, [&](Vec Ye, Vec Yde, Vec F) { PetscCallAbort(comm, cs.residual(t, Ye, Yde, F)); }, Y, Yd, D, sigma, F0, JD,
-        std::string(scene.bodies.empty() ? "chain " : "cable ") +
+        std::string(scene.bodies.empty() ? "chain " : scene.dimension == 3 ? "3D    " : "cable ") +
             (form == model::DynamicsDesc::ConstraintForm::Ggl ? "GGL    " : "index3 "));
     for (Vec* v : {&Y, &Yd, &D, &F0, &JD, &supported, &multipliers}) VecDestroy(v);
     MatDestroy(&M);

@@ -70,10 +70,11 @@ public:
   // at time t: the constant ones times Model::loadFactor(t) plus the timed nodal forces; joint forces
   // and equations); V may be null (no damping force). The inertia term M A is the integrator's.
   PetscErrorCode residual(Vec X, Vec V, PetscReal t, Vec R, SupportRows rows = SupportRows::Value);
-  // Newton matrix of an implicit integrator: K + shiftV D + shiftA M with K = df_int/dX,
+  // Newton matrix of an implicit integrator: K + shiftV D + shiftA M with K = dR/dX at time t
+  // (elastic, joints, and the configuration-dependent loads: nodal moments, 3D torques),
   // D = df_int/dV (Kelvin-Voigt), M the consistent mass; unit rows and columns at supports. With
   // D non-null (and V given), D alone is assembled there too (zero rows and columns at supports).
-  PetscErrorCode dynamicJacobian(Vec X, Vec V, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D = nullptr);
+  PetscErrorCode dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D = nullptr);
   // The constant applied loads f_ext (gravity, distributed and nodal forces) at the reference state,
   // on every row, supported ones included; nodal moments are evaluated there too (they follow the
   // slope, so they are not constant).

@@ -5,8 +5,12 @@
 // A constraint relates two vector fields a(q), b(q) of the joint's coordinates:
 //   Constant        a ground point or direction c;
 //   Block           the coordinates of block k (a cable node's position or slope vector);
-//   RigidPoint      r + R(phi) c of a 2D rigid body (position block k, phi = first entry of block k+1);
-//   RigidDirection  R(phi) c of a 2D rigid body (phi in block k).
+//   RigidPoint      a body point: 2D r + R(phi) c (position block k, phi = first entry of block k+1);
+//                   3D r + c_1 a_1 + c_2 a_2 + c_3 a_3 (block k, then the frame blocks a_i);
+//   RigidDirection  a body direction: 2D R(phi) c (phi in block k); 3D c_i a_i (a_1 in block k).
+// A 3D rigid body is described by natural coordinates: its centre of mass r and its frame vectors
+// a_i, the columns of the rotation matrix (Garcia de Jalon & Bayo 1994, ch. 3; Shabana's ANCF
+// reference node). Its points and directions are linear in them, so their Hessians vanish.
 // Forms:
 //   Equal       a - b = 0                     (D equations: pins, node-to-node);
 //   Distance    |a - b| - L = 0               (1 equation; the multiplier is the tension);
@@ -19,7 +23,7 @@
 
 namespace strand::elements {
 
-inline constexpr int kMaxJointCoordinates = 12;  // four blocks of three
+inline constexpr int kMaxJointCoordinates = 24;  // two 3D rigid bodies: eight blocks of three
 
 struct JointField {
   enum class Kind { Constant, Block, RigidPoint, RigidDirection } kind = Kind::Constant;
@@ -58,9 +62,19 @@ struct Constraint {
       case JointField::Kind::RigidDirection: {
         const bool point = f.kind == JointField::Kind::RigidPoint;
         const int rot = point ? f.block + 1 : f.block;
+        if constexpr (D == 3) {  // natural coordinates: (r +) sum_k c_k a_k, linear
+          for (int i = 0; i < 3; ++i) {
+            v[i] = point ? q[f.block * 3 + i] : 0.0;
+            if (point) dv[i * n + f.block * 3 + i] = 1.0;
+            for (int k = 0; k < 3; ++k) {
+              v[i] += f.c[k] * q[(rot + k) * 3 + i];
+              dv[i * n + (rot + k) * 3 + i] = f.c[k];
+            }
+          }
+          return;
+        }
         const double phi = q[rot * D], c = std::cos(phi), s = std::sin(phi);
         const double R[2] = {c * f.c[0] - s * f.c[1], s * f.c[0] + c * f.c[1]};  // R(phi) c
-        for (int i = 2; i < D; ++i) v[i] = 0.0;  // rigid bodies are planar (2D scenes)
         for (int i = 0; i < 2; ++i) {
           v[i] = (point ? q[f.block * D + i] : 0.0) + R[i];
           if (point) dv[i * n + f.block * D + i] = 1.0;
@@ -72,8 +86,9 @@ struct Constraint {
     }
   }
 
-  // H += s sum_i w_i d^2 v_i / dq^2 (only rigid fields are nonlinear: d^2 (R c)/dphi^2 = -R c).
+  // H += s sum_i w_i d^2 v_i / dq^2 (only 2D rigid fields are nonlinear: d^2 (R c)/dphi^2 = -R c).
   static void addFieldHessian(const JointField& f, const double* q, int n, const double* w, double s, double* H) {
+    if constexpr (D == 3) return;
     if (f.kind != JointField::Kind::RigidPoint && f.kind != JointField::Kind::RigidDirection) return;
     const int rot = f.kind == JointField::Kind::RigidPoint ? f.block + 1 : f.block;
     const double phi = q[rot * D], c = std::cos(phi), sn = std::sin(phi);

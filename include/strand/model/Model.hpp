@@ -34,12 +34,25 @@ struct Body {
   Vec3 loadPerLength{};                   // gravity rho A g plus distributed loads [N/m]
 };
 
-// A planar rigid body: position block (x, y of the centre of mass) and rotation block (phi, and
-// one unused coordinate held at zero). Mass matrix diag(m, m, J).
+// A rigid body.
+// 2D: position block (x, y of the centre of mass) and rotation block (phi, and one unused
+// coordinate held at zero); mass matrix diag(m, m, J).
+// 3D: natural coordinates (Garcia de Jalon & Bayo 1994, ch. 3), four consecutive blocks: the
+// centre of mass r and the body axes a_1, a_2, a_3 (the columns of the rotation matrix, in
+// rotBlock and the two blocks after it). A body point is r + c_k a_k, linear in the coordinates,
+// and the kinetic energy 1/2 m |r'|^2 + 1/2 Jbar_kl a_k' . a_l' has the constant mass matrix
+// diag(m I, Jbar (x) I) with Jbar = int rho c c^T dV = 1/2 tr(I) 1 - I (I: inertia tensor about the
+// centre of mass in the body frame). Six equations a_k . a_l = delta_kl (a joint of the model,
+// `frameJoint`) keep the frame orthonormal. A torque tau does the virtual work tau . delta theta
+// with delta a_k = delta theta x a_k: the generalized force Q_k = 1/2 tau x a_k on a_k.
 struct RigidBody {
   std::string name;
-  double mass = 0.0, inertia = 0.0;
+  double mass = 0.0, inertia = 0.0;      // 2D: J
   int posBlock = -1, rotBlock = -1;
+  std::array<double, 9> frameInertia{};  // 3D: Jbar, row-major
+  Vec3 torque{};                         // 3D: world-frame torque [N m] (2D torques are nodal forces)
+  int frameJoint = -1;                   // 3D: index of the orthonormality joint
+  int blocks(int dim) const { return dim == 2 ? 2 : 4; }
 };
 
 // A joint: its constraint equations over the coordinates of `blocks` (concatenated, dim each), and

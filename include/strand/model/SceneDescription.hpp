@@ -97,19 +97,22 @@ struct JunctionDesc {
   SourceMark mark;
 };
 
-// A rigid body (2D: x, y of the centre of mass and the angle phi; design section 3). Its mass
-// matrix is constant, diag(m, m, J).
+// A rigid body (design section 3). 2D: x, y of the centre of mass and the angle phi, mass matrix
+// diag(m, m, J). 3D: the centre of mass and the body frame's axes (natural coordinates, see
+// model::RigidBody); the body axes are principal axes of inertia.
 struct RigidBodyDesc {
   std::string name;
-  double mass = 0.0, inertia = 0.0;      // [kg], about the centre of mass [kg m^2]
+  double mass = 0.0, inertia = 0.0;      // [kg]; 2D: about the centre of mass [kg m^2]
+  Vec3 principalInertia{};                // 3D: about the body axes through the centre of mass [kg m^2]
   Vec3 position{};                        // centre of mass [m]
-  double angle = 0.0;                     // [rad]
+  double angle = 0.0;                     // [rad]; 3D: the body axes are the world axes turned by angle about axis
+  Vec3 axis{0.0, 0.0, 1.0};               // 3D: unit rotation axis of the initial orientation
   Vec3 velocity{};                        // initial velocity of the centre of mass [m/s]
-  double angularVelocity = 0.0;           // [rad/s]
+  Vec3 angularVelocity{};                 // [rad/s], world frame (2D: the z entry)
   Vec3 force{};                           // constant applied force at the centre of mass [N]
-  double torque = 0.0;                    // constant applied torque [N m]
-  std::vector<int> fixed;                 // held coordinates: 0 x, 1 y, 2 phi
-  bool driven = false;                    // phi prescribed: angle + rotation(t) (a driven hub)
+  Vec3 torque{};                          // constant applied torque [N m], world frame (2D: the z entry)
+  std::vector<int> fixed;                 // held coordinates: 0 x, 1 y, 2 phi (2D) or z (3D)
+  bool driven = false;                    // 2D: phi prescribed, angle + rotation(t) (a driven hub)
   TimeFunction rotation;                  // dynamics only; e.g. spin_up (seed 001 Eq. 57)
   SourceMark mark;
 };
