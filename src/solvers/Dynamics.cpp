@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "strand/solvers/AdamsBashforthMoulton.hpp"
-#include "strand/solvers/FixedStepBdf.hpp"
+#include "strand/solvers/StrandBdf.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
 #include "strand/solvers/StaticSolver.hpp"
 
@@ -50,7 +50,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
 
   PetscCallAbort(comm, GeneralizedAlphaRegister());
   PetscCallAbort(comm, AdamsBashforthMoultonRegister());
-  PetscCallAbort(comm, FixedStepBdfRegister());
+  PetscCallAbort(comm, StrandBdfRegister());
   PetscCallAbort(comm, TSCreate(comm, &_ts));
   PetscCallAbort(comm, TSSetOptionsPrefix(_ts, "dyn_"));
   if (_firstOrder) {
@@ -62,12 +62,9 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
       _constrainedSpace = std::make_unique<ConstrainedStateSpace>(assembler, *_space, _supported, _multipliers, _damped,
                                                                   desc.constraintForm);
     PetscCallAbort(comm, _space->createState(&_Y));
-    if (desc.integrator == model::Integrator::Bdf && !desc.adaptive) {  // ours: its history goes into checkpoints
-      PetscCallAbort(comm, TSSetType(_ts, kTsFixedStepBdf));
-      PetscCallAbort(comm, FixedStepBdfSetOrder(_ts, desc.bdfOrder));
-    } else if (desc.integrator == model::Integrator::Bdf) {
-      PetscCallAbort(comm, TSSetType(_ts, TSBDF));
-      PetscCallAbort(comm, TSBDFSetOrder(_ts, desc.bdfOrder));
+    if (desc.integrator == model::Integrator::Bdf) {  // ours, TSBDF's algorithm: its history goes into checkpoints
+      PetscCallAbort(comm, TSSetType(_ts, kTsStrandBdf));
+      PetscCallAbort(comm, StrandBdfSetOrder(_ts, desc.bdfOrder));
     } else if (desc.integrator == model::Integrator::Rk4) {
       PetscCallAbort(comm, TSSetType(_ts, TSRK));
       PetscCallAbort(comm, TSRKSetType(_ts, TSRK4));
@@ -503,7 +500,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsAdamsBashforthMoulton, &abm));
     if (abm && _resuming && _resume.historyCount > 0)
       PetscCall(AdamsBashforthMoultonSetHistory(_ts, _resume.historyCount, _resume.historyStep, _resume.history.data()));
-    PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsFixedStepBdf, &bdf));
+    PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsStrandBdf, &bdf));
     if (bdf) {  // a checkpoint's history, or none: a start
       BdfHistory h;
       if (_resuming) {
@@ -511,8 +508,9 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
         h.steps = _resume.bdfSteps;
         h.times = _resume.historyTimes;
         h.states.assign(_resume.history.begin(), _resume.history.begin() + _resume.historyTimes.size());
+        if (_desc.adaptive) PetscCall(TSSetTimeStep(_ts, _resume.historyStep));  // the controller's next step
       }
-      PetscCall(FixedStepBdfSetHistory(_ts, h));
+      PetscCall(StrandBdfSetHistory(_ts, h));
     }
     PetscCall(TSSolve(_ts, _Y));
     PetscCall(_space->unpack(_Y, X, V));

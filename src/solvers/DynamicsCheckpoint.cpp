@@ -1,7 +1,7 @@
 // Dynamics: the state a checkpoint needs to continue a run (Dynamics.hpp, ResumeState).
 #include "strand/solvers/AdamsBashforthMoulton.hpp"
 #include "strand/solvers/Dynamics.hpp"
-#include "strand/solvers/FixedStepBdf.hpp"
+#include "strand/solvers/StrandBdf.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
 
 #include <sstream>
@@ -38,15 +38,16 @@ PetscErrorCode Dynamics::saveState(ResumeState* s) {
   }
   s->historyTimes.clear();
   PetscBool bdf = PETSC_FALSE;
-  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsFixedStepBdf, &bdf));
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsStrandBdf, &bdf));
   if (bdf) {
     BdfHistory h;
-    PetscCall(FixedStepBdfGetHistory(_ts, &h));
+    PetscCall(StrandBdfGetHistory(_ts, &h));
     s->historyCount = static_cast<int>(h.states.size());
     for (int i = 0; i < s->historyCount; ++i) s->history[i] = h.states[i];
     s->historyTimes = h.times;
     s->bdfOrder = static_cast<int>(h.order);
     s->bdfSteps = static_cast<int>(h.steps);
+    PetscCall(TSGetTimeStep(_ts, &s->historyStep));  // adaptive: the controller's next step
   }
   PetscFunctionReturn(0);
 }
@@ -81,7 +82,7 @@ bool Dynamics::exactRestart() const {
   PetscBool alpha2 = PETSC_FALSE, bdf = PETSC_FALSE;
   PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2);
   PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSBDF, &bdf);
-  return !alpha2 && !bdf;  // TSALPHA2 and TSBDF (adaptive BDF) keep their state private
+  return !alpha2 && !bdf;  // TSALPHA2 and TSBDF (only by -dyn_ts_type) keep their state private
 }
 
 std::string Dynamics::signature() const {

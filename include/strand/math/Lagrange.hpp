@@ -1,4 +1,4 @@
-// Lagrange interpolation on arbitrary nodes, for BDF on a non-uniform history (solvers/FixedStepBdf,
+// Lagrange interpolation on arbitrary nodes, for BDF on a non-uniform history (solvers/StrandBdf,
 // ffr/HubBeamDense): the derivative of the basis at the first node (the BDF coefficients) and its
 // values at a point (the predictor's extrapolation).
 #pragma once

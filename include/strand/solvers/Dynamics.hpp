@@ -21,9 +21,10 @@
 // is consistent: velocities projected onto G v = 0, accelerations and multipliers from the
 // saddle-point system. The monitor reports max |g| and max |G v|.
 //
-// The first-order integrators (BDF 1-5 on TSBDF, fixed or adaptive step; explicit RK4 on TSRK;
-// explicit Adams-Bashforth-Moulton 4, AdamsBashforthMoulton.hpp) work on y = (u, v)
-// (StateSpace.hpp); the same monitors and the same blow-up guard apply. Without joints only.
+// The first-order integrators (BDF 1-5 on strand_bdf, StrandBdf.hpp, fixed or adaptive step;
+// explicit RK4 on TSRK; explicit Adams-Bashforth-Moulton 4, AdamsBashforthMoulton.hpp) work on
+// y = (u, v) (StateSpace.hpp; with joints BDF on ConstrainedStateSpace.hpp); the same monitors and
+// the same blow-up guard apply.
 //
 // Supports are eliminated: their residual rows are zero and their Jacobian rows unit, and the TS
 // sets their values at the end of each step (hub supports turn, model/HubMotion.hpp; the others
@@ -68,8 +69,8 @@ struct DynamicsStep {
 
 // What a checkpoint holds besides X and V, to continue a run exactly (Dynamics::saveState,
 // resumeFrom): the time, the step, the energy monitor's accumulators, and generalized-alpha's
-// accelerations A and a, ABM4's rate history, or fixed-step BDF's state history (adaptive BDF,
-// PETSc's TSBDF, restarts its start-up instead: not exact).
+// accelerations A and a, ABM4's rate history, or BDF's state history and next step (PETSc's own
+// TSBDF, chosen by -dyn_ts_type bdf, restarts its start-up instead: not exact).
 struct ResumeState {
   double time = 0.0;
   int step = 0;

@@ -1,5 +1,5 @@
 // The first-order (state-space) form of the equations of motion, for integrators of y' = f(t, y)
-// or F(t, y, y') = 0: BDF (TSBDF), explicit RK4 (TSRK) and Adams-Bashforth-Moulton
+// or F(t, y, y') = 0: BDF (strand_bdf, StrandBdf.hpp), explicit RK4 (TSRK) and Adams-Bashforth-Moulton
 // (AdamsBashforthMoulton.hpp). The state y = (u, v) stacks the displacements and velocities per
 // rank, [u_owned; v_owned], so y has twice the parallel layout of the second-order unknowns and the
 // halves are viewed in place (no copy) as vectors of that layout.

@@ -1,5 +1,5 @@
-// Fixed-step BDF with a readable history (FixedStepBdf.hpp).
-#include "strand/solvers/FixedStepBdf.hpp"
+// BDF with a readable history, fixed or adaptive step (StrandBdf.hpp).
+#include "strand/solvers/StrandBdf.hpp"
 #include "strand/math/Lagrange.hpp"
 
 #include <petsc/private/tsimpl.h>
@@ -15,6 +15,7 @@ constexpr size_t kKeep = 7;  // states kept: order 5 needs 5, its predictor 6, p
 struct BdfData {
   PetscInt order = 2;
   PetscInt k = 1, steps = 0;       // current order, steps since the start
+  PetscInt stageOrder = 1;         // the order of the stage being solved (error estimate)
   std::vector<PetscReal> times;    // most recent first (after the start the half step is last)
   std::vector<Vec> states;
   PetscReal stageTime = 0.0, shift = 0.0;
@@ -26,9 +27,9 @@ BdfData* dataOf(TS ts) { return static_cast<BdfData*>(ts->data); }
 PetscErrorCode checkType(TS ts) {
   PetscBool match;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ts), kTsFixedStepBdf, &match));
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ts), kTsStrandBdf, &match));
   PetscCheck(match, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_WRONG, "TS is not of type %s",
-             kTsFixedStepBdf);
+             kTsStrandBdf);
   PetscFunctionReturn(0);
 }
 
@@ -95,6 +96,43 @@ PetscErrorCode clearHistory(BdfData* d) {
   PetscFunctionReturn(0);
 }
 
+// The weighted local error of the stage y_{n+1} = ts->vec_sol at stageTime (StrandBdf.hpp; as
+// TSEvaluateWLTE_BDF).
+PetscErrorCode evaluateWlte(TS ts, NormType norm, PetscInt* order, PetscReal* wlte) {
+  BdfData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  const PetscInt k = std::min<PetscInt>(d->stageOrder, static_cast<PetscInt>(d->states.size()) - 1);
+  std::vector<PetscReal> T{d->stageTime};
+  T.insert(T.end(), d->times.begin(), d->times.begin() + k + 1);
+  std::vector<double> a = math::lagrangeDerivativeAtFirst({T.begin(), T.end() - 1});
+  const std::vector<double> b = math::lagrangeDerivativeAtFirst(T);
+  a.push_back(0.0);
+  std::vector<PetscScalar> alpha(k + 2);
+  for (PetscInt i = 0; i < k + 2; ++i) alpha[i] = (a[i] - b[i]) / a[0];
+  Vec Y = d->Ydot;  // free outside the SNES solve
+  PetscCall(VecCopy(ts->vec_sol, Y));
+  PetscCall(VecScale(Y, 1.0 + alpha[0]));
+  PetscCall(VecMAXPY(Y, k + 1, alpha.data() + 1, d->states.data()));
+  PetscReal wa, wr;
+  PetscCall(TSErrorWeightedNorm(ts, ts->vec_sol, Y, norm, wlte, &wa, &wr));
+  if (order) *order = k + 1;
+  PetscFunctionReturn(0);
+}
+
+// Back to the start's single state y_0 (a rejected first step drops its half step).
+PetscErrorCode keepOnlyFirst(BdfData* d) {
+  PetscFunctionBeginUser;
+  while (d->states.size() > 1) {
+    PetscCall(VecDestroy(&d->states.back()));
+    d->states.pop_back();
+    d->times.pop_back();
+  }
+  PetscFunctionReturn(0);
+}
+
+// One step, as TSStep_BDF: attempts until the adaptor accepts one (fixed step: the first attempt,
+// or a failed Newton ends the run through TSAdaptCheckStage and TSSetMaxSNESFailures). The stage
+// is solved in ts->vec_sol, which returns to y_n after a rejected attempt.
 PetscErrorCode step(TS ts) {
   BdfData* d = dataOf(ts);
   PetscFunctionBeginUser;
@@ -103,48 +141,52 @@ PetscErrorCode step(TS ts) {
     d->k = 1;
     d->steps = 0;
   }
-  const PetscReal h = ts->time_step, t1 = ts->ptime + h;
+  PetscInt k = d->steps > 0 ? std::min(d->k + 1, d->order) : std::min<PetscInt>(2, d->order);
   Vec Y = ts->vec_sol;
-  PetscBool ok = PETSC_TRUE;
-  PetscInt k = d->k;
-  bool half = false;
-  if (d->steps == 0 && d->order > 1) {  // backward Euler to t + h/2, kept as a history point
-    PetscCall(VecCopy(d->states[0], Y));
-    PetscCall(solveStage(ts, ts->ptime + 0.5 * h, 1, Y, &ok));
+  PetscBool accept = PETSC_TRUE;
+  PetscInt rejections = 0;
+  while (!ts->reason) {
+    const PetscReal h = ts->time_step, t1 = ts->ptime + h;
+    PetscBool ok = PETSC_TRUE;
+    if (d->steps == 0) {  // backward Euler to t + h/2, kept as a history point
+      PetscCall(keepOnlyFirst(d));
+      PetscCall(VecCopy(d->states[0], Y));
+      PetscCall(solveStage(ts, ts->ptime + 0.5 * h, 1, Y, &ok));
+      if (ok) PetscCall(push(d, ts->ptime + 0.5 * h, Y, false));
+    }
+    if (ok) {  // predictor: the polynomial through the last min(kp + 1, history) states at t1
+      const PetscInt kp = k - (accept ? 0 : 1);
+      const size_t m = std::min<size_t>(kp + 1, d->times.size());
+      const std::vector<double> c = math::lagrangeValues({d->times.begin(), d->times.begin() + m}, t1);
+      PetscCall(VecSet(Y, 0.0));
+      PetscCall(VecMAXPY(Y, static_cast<PetscInt>(m), c.data(), d->states.data()));
+      d->stageOrder = k;
+      PetscCall(solveStage(ts, t1, k, Y, &ok));
+    }
     if (ok) {
-      PetscCall(push(d, ts->ptime + 0.5 * h, Y, false));
-      half = true;
-      k = std::min<PetscInt>(2, d->order);
+      TSAdapt adapt;
+      PetscReal next = h;
+      PetscCall(TSGetAdapt(ts, &adapt));
+      PetscCall(TSAdaptCandidatesClear(adapt));
+      PetscCall(TSAdaptCandidateAdd(adapt, "strand_bdf", k, 1, 1.0, 1.0, PETSC_TRUE));
+      PetscCall(TSAdaptChoose(adapt, ts, h, nullptr, &next, &accept));
+      if (accept) {
+        PetscCall(push(d, t1, Y, true));
+        d->k = k;
+        ++d->steps;
+        ts->ptime += h;
+        ts->time_step = next;
+        PetscFunctionReturn(0);
+      }
+      ts->time_step = next;
     }
-  } else if (d->steps > 0) {
-    k = std::min(d->k + 1, d->order);
-  }
-  if (ok) {  // predictor: the polynomial through the last min(k + 1, history) states, at t1
-    const size_t m = std::min<size_t>(k + 1, d->times.size());
-    const std::vector<double> c = math::lagrangeValues({d->times.begin(), d->times.begin() + m}, t1);
-    PetscCall(VecSet(Y, 0.0));
-    PetscCall(VecMAXPY(Y, static_cast<PetscInt>(m), c.data(), d->states.data()));
-    PetscCall(solveStage(ts, t1, k, Y, &ok));
-  }
-  if (!ok) {  // a fixed step: the failure ends the run (TSSetMaxSNESFailures); the state stays y_n
-    if (half) {
-      PetscCall(VecDestroy(&d->states.back()));
-      d->states.pop_back();
-      d->times.pop_back();
-    }
-    PetscCall(VecCopy(d->states[0], ts->vec_sol));
+    // rejected (Newton failed: TSAdaptCheckStage cut the step or ended the run), back to y_n
+    PetscCall(VecCopy(d->states[0], Y));
     ts->reject++;
-    if (!ts->reason) ts->reason = TS_DIVERGED_NONLINEAR_SOLVE;
-    PetscFunctionReturn(0);
+    accept = PETSC_FALSE;
+    if (!ts->reason && ++rejections > ts->max_reject && ts->max_reject >= 0) ts->reason = TS_DIVERGED_STEP_REJECTED;
   }
-  PetscCall(push(d, t1, Y, true));
-  d->k = k;
-  ++d->steps;
-  PetscReal next = h;
-  PetscBool accept;
-  PetscCall(TSAdaptChoose(ts->adapt, ts, h, nullptr, &next, &accept));
-  ts->ptime += h;
-  ts->time_step = next;
+  if (d->steps == 0) PetscCall(keepOnlyFirst(d));
   PetscFunctionReturn(0);
 }
 
@@ -153,6 +195,10 @@ PetscErrorCode setUp(TS ts) {
   PetscFunctionBeginUser;
   for (Vec* v : {&d->V0, &d->Ydot})
     if (!*v) PetscCall(VecDuplicate(ts->vec_sol, v));
+  PetscReal low, high;  // as TSSetUp_BDF: the step at most doubles
+  PetscCall(TSGetAdapt(ts, &ts->adapt));
+  PetscCall(TSAdaptGetClip(ts->adapt, &low, &high));
+  PetscCall(TSAdaptSetClip(ts->adapt, low, std::min<PetscReal>(high, 2.0)));
   PetscCall(TSGetSNES(ts, &ts->snes));
   PetscFunctionReturn(0);
 }
@@ -179,7 +225,7 @@ PetscErrorCode setFromOptions(TS ts, PetscOptionItems* PetscOptionsObject) {
   BdfData* d = dataOf(ts);
   PetscFunctionBeginUser;
   PetscOptionsHeadBegin(PetscOptionsObject, "Strand fixed-step BDF options");
-  PetscCall(PetscOptionsInt("-ts_strand_bdf_order", "Order of the BDF method", "FixedStepBdfSetOrder", d->order,
+  PetscCall(PetscOptionsInt("-ts_strand_bdf_order", "Order of the BDF method", "StrandBdfSetOrder", d->order,
                             &d->order, nullptr));
   PetscOptionsHeadEnd();
   PetscCheck(d->order >= 1 && d->order <= 5, PetscObjectComm(reinterpret_cast<PetscObject>(ts)),
@@ -192,7 +238,7 @@ PetscErrorCode view(TS ts, PetscViewer viewer) {
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(viewer), PETSCVIEWERASCII, &ascii));
   if (ascii)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  order %d, fixed step, TSBDF's start (half step)\n",
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  order %d, TSBDF's start (half step) and error estimate\n",
                                      static_cast<int>(dataOf(ts)->order)));
   PetscFunctionReturn(0);
 }
@@ -205,6 +251,7 @@ PetscErrorCode create(TS ts) {
   ts->ops->setup = setUp;
   ts->ops->setfromoptions = setFromOptions;
   ts->ops->step = step;
+  ts->ops->evaluatewlte = evaluateWlte;
   ts->ops->snesfunction = snesFunction;
   ts->ops->snesjacobian = snesJacobian;
   ts->default_adapt_type = TSADAPTNONE;
@@ -215,15 +262,15 @@ PetscErrorCode create(TS ts) {
 
 }  // namespace
 
-PetscErrorCode FixedStepBdfRegister() {
+PetscErrorCode StrandBdfRegister() {
   static bool registered = false;
   PetscFunctionBeginUser;
-  if (!registered) PetscCall(TSRegister(kTsFixedStepBdf, create));
+  if (!registered) PetscCall(TSRegister(kTsStrandBdf, create));
   registered = true;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FixedStepBdfSetOrder(TS ts, PetscInt order) {
+PetscErrorCode StrandBdfSetOrder(TS ts, PetscInt order) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
   PetscCheck(order >= 1 && order <= 5, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_OUTOFRANGE,
@@ -232,7 +279,7 @@ PetscErrorCode FixedStepBdfSetOrder(TS ts, PetscInt order) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FixedStepBdfGetHistory(TS ts, BdfHistory* h) {
+PetscErrorCode StrandBdfGetHistory(TS ts, BdfHistory* h) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
   const BdfData* d = dataOf(ts);
@@ -243,7 +290,7 @@ PetscErrorCode FixedStepBdfGetHistory(TS ts, BdfHistory* h) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode FixedStepBdfSetHistory(TS ts, const BdfHistory& h) {
+PetscErrorCode StrandBdfSetHistory(TS ts, const BdfHistory& h) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
   BdfData* d = dataOf(ts);
