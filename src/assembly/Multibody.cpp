@@ -48,10 +48,9 @@ bool Multibody::isJoint(int k) const { return _model.couplings()[_dofs.localCoup
 void Multibody::residual(const double* x, double scale, double loadFactor, double* r) const {
   const int D = _model.dim();
   for (int k = 0; k < static_cast<int>(_dofs.localCouplings().size()); ++k) {
-    if (!isJoint(k)) {
-      const model::RigidBody& rb = _model.rigidBodies()[_model.couplings()[_dofs.localCouplings()[k]].rigidBody];
+    if (!isJoint(k)) {  // a rigid body: only a 3D torque adds to the residual here
       if (D == 2 || loadFactor == 0.0) continue;
-      const double* t = rb.torque.data();
+      const double* t = _model.rigidBodies()[_model.couplings()[_dofs.localCouplings()[k]].rigidBody].torque.data();
       const PetscInt* lb = &_dofs.couplingLocalBlocks()[_dofs.couplingOffset()[k]];
       for (int a = 1; a < 4; ++a) {  // r -= loadFactor 1/2 tau x a_k
         double e[3];
