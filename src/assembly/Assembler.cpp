@@ -446,6 +446,17 @@ PetscErrorCode Assembler::multiplierMask(Vec mask) const {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::supportMask(Vec mask) const {
+  PetscFunctionBeginUser;
+  PetscScalar* m;
+  PetscInt n;
+  PetscCall(VecGetLocalSize(mask, &n));
+  PetscCall(VecGetArray(mask, &m));
+  for (PetscInt i = 0; i < n; ++i) m[i] = _fixedLocal[i] ? 1.0 : 0.0;
+  PetscCall(VecRestoreArray(mask, &m));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::saddleMatrix(Vec X, Mat S) {
   PetscFunctionBeginUser;
   Vec xl;

@@ -36,13 +36,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, VecSet(_notMultiplier, 1.0));
   PetscCallAbort(comm, VecAXPY(_notMultiplier, -1.0, _multipliers));
   PetscCallAbort(comm, assembler.externalForce(_fext));
-  {
-    IS free;
-    PetscCallAbort(comm, assembler.freeDofs(&free));
-    PetscCallAbort(comm, VecSet(_supported, 1.0));
-    PetscCallAbort(comm, VecISSet(_supported, free, 0.0));
-    PetscCallAbort(comm, ISDestroy(&free));
-  }
+  PetscCallAbort(comm, assembler.supportMask(_supported));
 
   _firstOrder = model::isFirstOrder(desc.integrator);
   _explicit = model::isExplicit(desc.integrator);

@@ -88,7 +88,6 @@ inline double highestFrequency(const model::SceneDescription& sc) {
   solvers::Problem p(comm, sc);
   Mat K, M;
   Vec X, supported;
-  IS free;
   PetscCallAbort(comm, p.dofs().createMatrix(&K, nullptr));
   PetscCallAbort(comm, p.dofs().createMatrix(&M, nullptr));
   PetscCallAbort(comm, p.dofs().createVector(&X));
@@ -96,9 +95,7 @@ inline double highestFrequency(const model::SceneDescription& sc) {
   PetscCallAbort(comm, p.assembler().initialState(X));
   PetscCallAbort(comm, p.assembler().staticJacobian(X, 0.0, K));
   PetscCallAbort(comm, p.assembler().massMatrix(M));
-  PetscCallAbort(comm, p.assembler().freeDofs(&free));
-  PetscCallAbort(comm, VecSet(supported, 1.0));
-  PetscCallAbort(comm, VecISSet(supported, free, 0.0));
+  PetscCallAbort(comm, p.assembler().supportMask(supported));
   PetscCallAbort(comm, MatDiagonalSet(M, supported, ADD_VALUES));
   EPS eps;
   ST st;
@@ -122,7 +119,6 @@ inline double highestFrequency(const model::SceneDescription& sc) {
   MatDestroy(&M);
   VecDestroy(&X);
   VecDestroy(&supported);
-  ISDestroy(&free);
   return std::sqrt(PetscRealPart(lambda));
 }
 

@@ -90,11 +90,7 @@ struct Fixture {
     PetscCallAbort(comm, a.massMatrix(M, false));
     PetscCallAbort(comm, a.massMatrix(Mmasked, true));
     PetscCallAbort(comm, MatCreateVecs(M, nullptr, &supported));
-    IS free;
-    PetscCallAbort(comm, a.freeDofs(&free));
-    PetscCallAbort(comm, VecSet(supported, 1.0));
-    PetscCallAbort(comm, VecISSet(supported, free, 0.0));
-    PetscCallAbort(comm, ISDestroy(&free));
+    PetscCallAbort(comm, a.supportMask(supported));
     PetscCallAbort(comm, MatDiagonalSet(Mmasked, supported, ADD_VALUES));
     PetscCallAbort(comm, KSPCreate(comm, &mass));
     PetscCallAbort(comm, KSPSetOperators(mass, Mmasked, Mmasked));
@@ -241,11 +237,7 @@ TEST(ConstrainedStateSpace, NewtonMatrixPassesTheTaylorTestOnBothForms) {
     PetscCallAbort(comm, MatCreateVecs(M, nullptr, &supported));
     PetscCallAbort(comm, VecDuplicate(supported, &multipliers));
     PetscCallAbort(comm, a.multiplierMask(multipliers));
-    IS free;
-    PetscCallAbort(comm, a.freeDofs(&free));
-    PetscCallAbort(comm, VecSet(supported, 1.0));
-    PetscCallAbort(comm, VecISSet(supported, free, 0.0));
-    PetscCallAbort(comm, ISDestroy(&free));
+    PetscCallAbort(comm, a.supportMask(supported));
     solvers::StateSpace space(a, M, supported, nullptr, true);
     solvers::ConstrainedStateSpace cs(a, space, supported, multipliers, true, form);
     auto random = [&](unsigned seed, double scaleU) { return randomState(space, comm, seed, scaleU); };

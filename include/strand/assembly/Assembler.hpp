@@ -46,6 +46,8 @@ public:
   bool hasConstraints() const { return _model.hasConstraints(); }
   // 1 on owned multiplier DOFs, 0 elsewhere.
   PetscErrorCode multiplierMask(Vec mask) const;
+  // 1 on owned supported DOFs (held or prescribed), 0 elsewhere.
+  PetscErrorCode supportMask(Vec mask) const;
   // Saddle-point matrix [M G^T; G 0] (masked mass, s = 1, unit rows and columns at supports): the
   // consistent initial accelerations and multipliers, and the projection of initial velocities.
   PetscErrorCode saddleMatrix(Vec X, Mat S);
