@@ -67,6 +67,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
     }
   } else {
     PetscCallAbort(comm, TSSetType(_ts, kTsGeneralizedAlpha));
+    PetscCallAbort(comm, GeneralizedAlphaSetNewtonRetry(_ts, retryNewton, this));
     PetscCallAbort(comm, TSSetI2Function(_ts, nullptr, formFunction, this));
     PetscCallAbort(comm, TSSetI2Jacobian(_ts, _J, _J, formJacobian, this));
     PetscCallAbort(comm, applyScheme());
@@ -85,11 +86,8 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   KSP ksp;
   PetscCallAbort(comm, TSGetSNES(_ts, &snes));
   PetscCallAbort(comm, SNESSetTolerances(snes, 0.0, 1e-10, 1e-12, 25, PETSC_DEFAULT));
-  // The Newton matrix once per step, reused by the step's second iteration (a chord step): the
-  // matrix changes little within a step, so the iteration count stays (spin-up: 1.98 per step
-  // either way) and the step costs one assembly and factorization less: 48 -> 36 us per step
-  // (docs/performance.md). -dyn_snes_lag_jacobian 1 restores full Newton.
-  PetscCallAbort(comm, SNESSetLagJacobian(snes, 2));
+  // The Newton matrix is kept across iterations and steps while it contracts (NewtonMatrixReuse,
+  // formJacobian decides at every iterate); -dyn_newton_matrix_contraction 0 gives full Newton.
   // as in statics: the residual has a round-off floor (StaticSolver.cpp)
   _floor.coordinateNorm = assembler.coordinateNorm();
   PetscCallAbort(comm, SNESSetConvergenceTest(snes, roundoffFloorConvergence, &_floor, nullptr));
@@ -135,6 +133,9 @@ PetscErrorCode Dynamics::applyScheme() {
 PetscErrorCode Dynamics::setFromOptions() {
   PetscFunctionBeginUser;
   PetscCall(TSSetFromOptions(_ts));
+  PetscReal c = _reuse.contraction();
+  PetscCall(PetscOptionsGetReal(nullptr, "dyn_", "-newton_matrix_contraction", &c, nullptr));
+  _reuse.setContraction(c);
   PetscBool ours, alpha2;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2));
@@ -294,11 +295,22 @@ PetscErrorCode Dynamics::formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Dynamics::formJacobian(TS, PetscReal t, Vec U, Vec V, Vec, PetscReal shiftV, PetscReal shiftA, Mat J, Mat,
+// A Newton failure after a kept matrix: once more with full Newton (NewtonMatrixReuse).
+PetscErrorCode Dynamics::retryNewton(void* ctx, PetscBool* again) {
+  PetscFunctionBeginUser;
+  *again = static_cast<Dynamics*>(ctx)->_reuse.retryWithFullNewton() ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Dynamics::formJacobian(TS ts, PetscReal t, Vec U, Vec V, Vec, PetscReal shiftV, PetscReal shiftA, Mat J, Mat,
                                       void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
-  PetscCall(self->_asm.dynamicJacobian(U, self->_damped ? V : nullptr, t, shiftV, shiftA, J));
+  SNES snes;
+  bool rebuild;
+  PetscCall(TSGetSNES(ts, &snes));
+  PetscCall(self->_reuse.decide(snes, self->_floor, shiftA, shiftV, &rebuild));
+  if (rebuild) PetscCall(self->_asm.dynamicJacobian(U, self->_damped ? V : nullptr, t, shiftV, shiftA, J));
   PetscFunctionReturn(0);
 }
 

@@ -19,6 +19,8 @@ struct AlphaData {
   void* prescribeCtx = nullptr;
   Vec differential = nullptr;  // 0 on algebraic entries (multipliers), 1 elsewhere; null: none
   int predictor = 2;           // X1 = X0 (0), + h V0 (1), + h^2/2 A0 (2)
+  RetryFn retry = nullptr;
+  void* retryCtx = nullptr;
 };
 
 AlphaData* dataOf(TS ts) { return static_cast<AlphaData*>(ts->data); }
@@ -82,17 +84,35 @@ PetscErrorCode step(TS ts) {
     d->stageTime = ts->ptime + h;  // equilibrium at t_{n+1}
     d->shiftV = d->gamma / (d->beta * h);
     d->shiftA = (1.0 - d->alphaM) / ((1.0 - d->alphaF) * d->beta * h * h);
-    Vec X1 = ts->vec_sol;  // predictor: constant acceleration (or velocity, or displacement)
-    if (d->predictor >= 1) PetscCall(VecAXPY(X1, h, d->V0));
-    if (d->predictor >= 2) PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
-    if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, d->prescribeCtx));
-    PetscCall(TSPreStage(ts, d->stageTime));
-    PetscCall(SNESSolve(ts->snes, nullptr, X1));
-    PetscInt nits, lits;
-    PetscCall(SNESGetIterationNumber(ts->snes, &nits));
-    PetscCall(SNESGetLinearSolveIterations(ts->snes, &lits));
-    ts->snes_its += nits;
-    ts->ksp_its += lits;
+    Vec X1 = ts->vec_sol;
+    for (PetscBool again = PETSC_TRUE; again;) {
+      again = PETSC_FALSE;
+      PetscCall(VecCopy(d->X0, X1));  // predictor: constant acceleration (or velocity, or displacement)
+      if (d->predictor >= 1) PetscCall(VecAXPY(X1, h, d->V0));
+      if (d->predictor >= 2) PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
+      if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, d->prescribeCtx));
+      PetscCall(TSPreStage(ts, d->stageTime));
+      PetscCall(SNESSolve(ts->snes, nullptr, X1));
+      PetscInt nits, lits;
+      PetscCall(SNESGetIterationNumber(ts->snes, &nits));
+      PetscCall(SNESGetLinearSolveIterations(ts->snes, &lits));
+      ts->snes_its += nits;
+      ts->ksp_its += lits;
+      SNESConvergedReason reason;
+      PetscCall(SNESGetConvergedReason(ts->snes, &reason));
+      if (reason >= 0) break;
+      // Newton failed: once more from X0 with full Newton, and keep the displacement predictor
+      // for the rest of the run (a suddenly loaded fine mesh: the extrapolated acceleration
+      // kinks the elements at a support and starts Newton outside its basin, docs/performance.md)
+      if (d->retry) PetscCall(d->retry(d->retryCtx, &again));
+      if (d->predictor > 0) {
+        PetscCall(PetscInfo(ts, "Newton failed at t = %g from the %s predictor; from X0 from now on\n",
+                            static_cast<double>(ts->ptime + h), d->predictor == 2 ? "acceleration" : "velocity"));
+        d->predictor = 0;
+        again = PETSC_TRUE;
+      }
+      if (again) ts->reject++;
+    }
     PetscBool accept;
     PetscCall(TSAdaptCheckStage(ts->adapt, ts, ts->ptime + h, X1, &accept));
     if (accept) {
@@ -292,6 +312,14 @@ PetscErrorCode GeneralizedAlphaSetPrescribedMotion(TS ts, PrescribeFn prescribe,
   PetscCall(checkType(ts));
   dataOf(ts)->prescribe = prescribe;
   dataOf(ts)->prescribeCtx = ctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaSetNewtonRetry(TS ts, RetryFn retry, void* ctx) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  dataOf(ts)->retry = retry;
+  dataOf(ts)->retryCtx = ctx;
   PetscFunctionReturn(0);
 }
 

@@ -30,8 +30,10 @@ int main(int argc, char** argv) {
   const double d = 0.01;
   PetscReal L = 1.0;  // -length: a longer cable keeps the element length of N / L
   PetscReal ramp = 0.0;  // -ramp T: gravity ramped in over T seconds (loads.function: ramp)
+  PetscReal dt = 1e-3;   // -dt h: the time step (the run covers -steps steps of 1 ms either way)
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-length", &L, nullptr));
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-ramp", &ramp, nullptr));
+  PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-dt", &dt, nullptr));
   Section s;
   s.E = 2.1e11;
   s.rho = 7850.0;
@@ -50,8 +52,8 @@ int main(int argc, char** argv) {
     }
     model::DynamicsDesc dd;
     dd.rhoInf = 0.9;
-    dd.dt = 1e-3;
-    dd.tEnd = steps * dd.dt;
+    dd.dt = dt;
+    dd.tEnd = steps * 1e-3;
     PetscLogDouble t0, t1, t2;
     PetscCall(PetscTime(&t0));
     solvers::Problem p(PETSC_COMM_WORLD, sc);
@@ -78,10 +80,10 @@ int main(int argc, char** argv) {
     if (!q.empty()) tip = nodePosition(p, q, 0, -1)[2];
     const double staticTip = -s.rho * s.A * 9.81 * std::pow(L, 4) / (8.0 * s.E * s.I);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                          "{\"bench\": \"cantilever_3d_dynamics\", \"elements\": %d, \"length\": %g, \"ranks\": %d, \"dt\": 1.0e-03, "
+                          "{\"bench\": \"cantilever_3d_dynamics\", \"elements\": %d, \"length\": %g, \"ranks\": %d, \"dt\": %.3e, "
                           "\"steps\": %ld, \"setup_seconds\": %.6e, \"seconds\": %.6e, \"ms_per_step\": %.4f, "
-                          "\"newton_per_step\": %.4f, \"failed\": %s, \"tip_z\": %.6e, \"static_tip_z\": %.6e}\n",
-                          static_cast<int>(sizes[k]), static_cast<double>(L), ranks, done, t1 - t0, t2 - t1, 1e3 * (t2 - t1) / std::max(done, 1L),
+                          "\"newton_per_step\": %.4f, \"failed\": %s, \"tip_z\": %.9e, \"static_tip_z\": %.6e}\n",
+                          static_cast<int>(sizes[k]), static_cast<double>(L), ranks, static_cast<double>(dt), done, t1 - t0, t2 - t1, 1e3 * (t2 - t1) / std::max(done, 1L),
                           double(newton) / std::max(done, 1L), failure.empty() ? "false" : "true", tip, staticTip));
     if (!failure.empty()) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "# %s\n", failure.c_str()));
     VecDestroy(&X);

@@ -50,6 +50,7 @@
 #include "strand/solvers/ConstrainedStateSpace.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
 #include "strand/solvers/StateSpace.hpp"
+#include "strand/solvers/NewtonMatrixReuse.hpp"
 #include "strand/solvers/StaticSolver.hpp"
 
 namespace strand::solvers {
@@ -106,6 +107,12 @@ public:
   // elsewhere), at the current state of the integration (inside a step callback, or after run()).
   PetscErrorCode supportForce(Vec F);
   const char* schemeName() const { return _schemeName.c_str(); }
+  // Newton matrices assembled since construction (generalized-alpha family: NewtonMatrixReuse
+  // keeps one across iterations and steps while it contracts).
+  long newtonMatrices() const { return _reuse.rebuilds(); }
+  // Rebuild the Newton matrix when the corrections shrink by less than this factor per iteration
+  // (default 0.1; -dyn_newton_matrix_contraction); 0: full Newton, a new matrix at every iterate.
+  void setNewtonMatrixContraction(double c) { _reuse.setContraction(c); }
   // The scheme with its parameters and the TS type that runs it (checkpoints must match it).
   std::string signature() const;
 
@@ -128,6 +135,7 @@ private:
   static PetscErrorCode formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx);
   static PetscErrorCode formJacobian(TS, PetscReal t, Vec U, Vec V, Vec A, PetscReal shiftV, PetscReal shiftA, Mat J,
                                      Mat P, void* ctx);
+  static PetscErrorCode retryNewton(void* ctx, PetscBool* again);
   static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec X, void* ctx);
   static PetscErrorCode postStep(TS ts);
   static PetscErrorCode prescribe(PetscReal t, Vec X, void* ctx);
@@ -163,6 +171,7 @@ private:
   DynamicsStep _last;
   double _lastDampingPower = 0.0, _lastSupportPower = 0.0, _lastLoadPower = 0.0;
   NewtonFloor _floor;
+  NewtonMatrixReuse _reuse;
   std::function<bool()> _stopCheck;
   bool _stopped = false;
   double _collapsedStep = 0.0;  // adaptive BDF: the step taken at the controller's minimum (postStep)

@@ -28,7 +28,9 @@
 //     those entries must be zero, the Jacobian rows unit);
 //   - predictor X1 = X0 + h V0 + h^2/2 A0 (constant acceleration) instead of X1 = X0
 //     (-ts_strand_alpha_predictor displacement | velocity | acceleration; displacement is the
-//     robust start for fine, stiff meshes under suddenly applied loads, docs/performance.md);
+//     robust start for fine, stiff meshes under suddenly applied loads, docs/performance.md).
+//     When Newton fails, the step is tried once more from X1 = X0 (counted as a rejected step),
+//     and the displacement predictor is kept from then on;
 //   - index-3 constraints (Arnold & Bruls 2007, Sec. 4): Lagrange multipliers are entries of X
 //     marked algebraic; their rows hold s g(q1) at t_{n+1}, so the position constraints hold to
 //     Newton tolerance at every step (no drift).
@@ -65,5 +67,11 @@ PetscErrorCode GeneralizedAlphaSetAlgebraic(TS ts, Vec mask);
 // prescribe(t, X, ctx) sets the prescribed entries of X to their values at time t.
 using PrescribeFn = PetscErrorCode (*)(PetscReal t, Vec X, void* ctx);
 PetscErrorCode GeneralizedAlphaSetPrescribedMotion(TS ts, PrescribeFn prescribe, void* ctx);
+// After a failed Newton solve, retry(ctx, &again) is told (e.g. to build a fresh Newton matrix,
+// NewtonMatrixReuse) and may ask for one more attempt of the same step from X1 = X0 before the
+// failure goes to TSAdaptCheckStage (the TS retries anyway after a failure from a predictor other
+// than X0).
+using RetryFn = PetscErrorCode (*)(void* ctx, PetscBool* again);
+PetscErrorCode GeneralizedAlphaSetNewtonRetry(TS ts, RetryFn retry, void* ctx);
 
 }  // namespace strand::solvers

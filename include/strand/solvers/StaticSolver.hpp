@@ -11,14 +11,9 @@
 #include <string>
 
 #include "strand/assembly/Assembler.hpp"
+#include "strand/solvers/NewtonConvergence.hpp"
 
 namespace strand::solvers {
-
-// Context of roundoffFloorConvergence: |R| at the first iterate, and |q0| (the norm of the
-// reference coordinates, which set the round-off of q = q0 + u).
-struct NewtonFloor {
-  PetscReal fnorm0 = 0.0, coordinateNorm = 0.0;
-};
 
 struct StaticStep {
   int step = 0;              // accepted load steps so far
@@ -56,11 +51,6 @@ private:
   Mat _J = nullptr;
   Vec _R = nullptr;
 };
-
-// SNES convergence test shared by statics and dynamics (a position-based beam's residual has a
-// round-off floor, StaticSolver.cpp): ctx is a PetscReal* that keeps |R| of the first iterate.
-PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
-                                        SNESConvergedReason* reason, void* ctx);
 
 // Direct-solver defaults used by every Strand solver, set only where the user gave no option:
 // PETSc's LU with RCM ordering in serial, MUMPS in parallel (design section 3).

@@ -1,0 +1,24 @@
+// The Newton stopping test shared by statics and dynamics, and the iteration history it keeps
+// (NewtonMatrixReuse reads it to decide when the Newton matrix is stale).
+#pragma once
+#include <petscsnes.h>
+
+namespace strand::solvers {
+
+// Context of roundoffFloorConvergence: |R| at the first iterate, |q0| (the norm of the reference
+// coordinates, which set the round-off of q = q0 + u), and the last two iterates' history.
+struct NewtonFloor {
+  PetscReal fnorm0 = 0.0, coordinateNorm = 0.0;
+  PetscInt iteration = -1;                        // of the last test
+  PetscReal step = 0.0, previousStep = 0.0;       // |du| of the last two Newton corrections
+  PetscReal fnorm = 0.0;                          // |R| after the last one
+  // The contraction of the last two corrections, theta = |du_k| / |du_{k-1}| (0 before two are known).
+  PetscReal contraction() const { return iteration >= 2 && previousStep > 0.0 ? step / previousStep : 0.0; }
+};
+
+// SNES convergence test (ctx: a NewtonFloor): SNESConvergedDefault, plus a test on the Newton
+// correction against the coordinates that stops at the residual's round-off floor (the .cpp says why).
+PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
+                                        SNESConvergedReason* reason, void* ctx);
+
+}  // namespace strand::solvers

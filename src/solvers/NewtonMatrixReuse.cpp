@@ -1,0 +1,42 @@
+#include "strand/solvers/NewtonMatrixReuse.hpp"
+
+#include <cmath>
+
+namespace strand::solvers {
+
+PetscErrorCode NewtonMatrixReuse::decide(SNES snes, const NewtonFloor& history, PetscReal shiftA, PetscReal shiftV,
+                                         bool* rebuild) {
+  PetscFunctionBeginUser;
+  PetscInt it;
+  PetscCall(SNESGetIterationNumber(snes, &it));
+  if (it == 0) {
+    _reusedThisSolve = false;
+    _fullThisSolve = _fullNextSolve;
+    _fullNextSolve = false;
+  }
+  const auto differs = [](PetscReal a, PetscReal b) { return std::abs(a - b) > 1e-12 * std::abs(b); };
+  if (_fullThisSolve || !_valid || differs(shiftA, _shiftA) || differs(shiftV, _shiftV) || _contraction <= 0.0 || history.iteration != it)
+    *rebuild = true;
+  else if (it == 0) *rebuild = false;  // the predictor: keep the last step's matrix
+  else if (!(history.fnorm <= history.fnorm0)) *rebuild = true;  // grown (or NaN)
+  else if (it == 1) *rebuild = history.fnorm > _contraction * history.fnorm0;
+  // Later the corrections, not the residual, measure the contraction: near the residual's
+  // round-off floor |R| stalls while the corrections still shrink.
+  else *rebuild = history.contraction() > _contraction;
+  if (!*rebuild) _reusedThisSolve = true;
+  if (*rebuild) {
+    _valid = true;
+    _shiftA = shiftA;
+    _shiftV = shiftV;
+    ++_rebuilds;
+  }
+  PetscFunctionReturn(0);
+}
+
+bool NewtonMatrixReuse::retryWithFullNewton() {
+  _valid = false;
+  _fullNextSolve = true;     // whoever retries gets full Newton
+  return _reusedThisSolve;   // full Newton failed: from the same start a retry would repeat it
+}
+
+}  // namespace strand::solvers
