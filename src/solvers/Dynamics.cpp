@@ -88,7 +88,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, SNESSetTolerances(snes, 0.0, 1e-10, 1e-12, 25, PETSC_DEFAULT));
   // The Newton matrix is kept across iterations and steps while it contracts (NewtonMatrixReuse,
   // formJacobian decides at every iterate); -dyn_newton_matrix_contraction 0 gives full Newton.
-  // as in statics: the residual has a round-off floor (StaticSolver.cpp)
+  // as in statics: the residual has a round-off floor (NewtonConvergence.cpp)
   _floor.coordinateNorm = assembler.coordinateNorm();
   PetscCallAbort(comm, SNESSetConvergenceTest(snes, roundoffFloorConvergence, &_floor, nullptr));
   PetscCallAbort(comm, SNESGetLineSearch(snes, &ls));

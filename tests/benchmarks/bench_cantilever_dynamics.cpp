@@ -34,15 +34,9 @@ int main(int argc, char** argv) {
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-length", &L, nullptr));
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-ramp", &ramp, nullptr));
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-dt", &dt, nullptr));
-  Section s;
-  s.E = 2.1e11;
-  s.rho = 7850.0;
-  s.A = M_PI * d * d / 4.0;
-  s.I = M_PI * d * d * d * d / 64.0;
   for (PetscInt k = 0; k < nsizes; ++k) {
-    model::SceneDescription sc = cantilever(3, static_cast<int>(sizes[k]), L, s);
-    sc.analysis = model::Analysis::Dynamic;
-    sc.loads.gravity = {0, 0, -9.81};
+    model::SceneDescription sc = steelCantileverUnderGravity(static_cast<int>(sizes[k]), L, d);
+    const model::BodyDesc& s = sc.bodies[0];
     if (ramp > 0.0) {
       sc.loads.timed = true;
       sc.loads.function.kind = model::TimeFunction::Kind::Ramp;

@@ -46,6 +46,19 @@ inline model::SceneDescription cantilever(int dim, int elements, double length =
   return sc;
 }
 
+// A steel cable cantilever of solid round section (diameter d; E, rho: Section's steel) under
+// gravity along -z, dynamic, released from the straight shape (3D, AncfCable3d). The benchmark of
+// issue 3 (L = 1 m, d = 10 mm): bench_cantilever_dynamics and test_dynamics.
+inline model::SceneDescription steelCantileverUnderGravity(int elements, double length = 1.0, double d = 0.01) {
+  Section s;
+  s.A = M_PI * d * d / 4.0;
+  s.I = M_PI * d * d * d * d / 64.0;
+  model::SceneDescription sc = cantilever(3, elements, length, s);
+  sc.analysis = model::Analysis::Dynamic;
+  sc.loads.gravity = {0, 0, -9.81};
+  return sc;
+}
+
 // The spinning beam of seed 001 (section 4.1): L = 10 m, A = 4e-4 m^2, I = 2e-7 m^4,
 // rho = 3000 kg/m^3, 2D cables clamped at the origin. With omega0 > 0 the clamp turns with a hub
 // whose angle follows the spin-up profile of seed 001 Eq. 57 (Omega0 = omega0, T = duration).

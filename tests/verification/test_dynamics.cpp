@@ -215,15 +215,7 @@ struct CantileverRelease {
 // options: PETSc options for the run ("-name value" pairs), cleared afterwards.
 CantileverRelease releaseCantilever(int elements, double dt, int steps, const std::vector<std::string>& options) {
   MPI_Comm comm = PETSC_COMM_WORLD;
-  const double d = 0.01;
-  Section s;
-  s.E = 2.1e11;
-  s.rho = 7850.0;
-  s.A = M_PI * d * d / 4.0;
-  s.I = M_PI * d * d * d * d / 64.0;
-  model::SceneDescription sc = cantilever(3, elements, 1.0, s);
-  sc.analysis = model::Analysis::Dynamic;
-  sc.loads.gravity = {0, 0, -9.81};
+  const model::SceneDescription sc = steelCantileverUnderGravity(elements);
   model::DynamicsDesc dd;
   dd.rhoInf = 0.9;
   dd.dt = dt;

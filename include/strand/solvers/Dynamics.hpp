@@ -49,8 +49,8 @@
 #include "strand/model/SceneDescription.hpp"
 #include "strand/solvers/ConstrainedStateSpace.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
-#include "strand/solvers/StateSpace.hpp"
 #include "strand/solvers/NewtonMatrixReuse.hpp"
+#include "strand/solvers/StateSpace.hpp"
 #include "strand/solvers/StaticSolver.hpp"
 
 namespace strand::solvers {

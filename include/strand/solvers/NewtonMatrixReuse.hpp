@@ -32,8 +32,6 @@ public:
   // (PCSetUp refactors only a Mat whose state changed).
   // history: the stopping test's record of this solve (roundoffFloorConvergence).
   PetscErrorCode decide(SNES snes, const NewtonFloor& history, PetscReal shiftA, PetscReal shiftV, bool* rebuild);
-  // The kept matrix is stale (a rejected step, a restart, a changed model).
-  void invalidate() { _valid = false; }
   // After a failed solve: whether that solve used a kept matrix, so that a retry with full Newton
   // (a fresh matrix at every iterate, which the next solve then gets) may succeed where it failed.
   bool retryWithFullNewton();
