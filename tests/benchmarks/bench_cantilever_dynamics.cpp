@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
     if (!q.empty()) tip = nodePosition(p, q, 0, -1)[2];
     const double staticTip = -s.rho * s.A * 9.81 * std::pow(L, 4) / (8.0 * s.E * s.I);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                          "{\"bench\": \"cantilever_3d_dynamics\", \"elements\": %d, \"length\": %g, \"ranks\": %d, \"dt\": %.3e, "
+                          "{\"bench\": \"cantilever_3d_dynamics\", \"elements\": %d, \"length\": %.6e, \"ranks\": %d, \"dt\": %.3e, "
                           "\"steps\": %ld, \"setup_seconds\": %.6e, \"seconds\": %.6e, \"ms_per_step\": %.4f, "
                           "\"newton_per_step\": %.4f, \"failed\": %s, \"tip_z\": %.9e, \"static_tip_z\": %.6e}\n",
                           static_cast<int>(sizes[k]), static_cast<double>(L), ranks, static_cast<double>(dt), done, t1 - t0, t2 - t1, 1e3 * (t2 - t1) / std::max(done, 1L),

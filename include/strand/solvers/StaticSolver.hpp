@@ -53,7 +53,8 @@ private:
 };
 
 // Direct-solver defaults used by every Strand solver, set only where the user gave no option:
-// PETSc's LU with RCM ordering in serial, MUMPS in parallel (design section 3).
+// PETSc's LU with RCM ordering in serial; in parallel the interface Schur complement over per-rank
+// banded LUs (InterfaceSchur.hpp; MUMPS until session 13, design section 3).
 // saddlePoint: the matrix has zero diagonal blocks (Lagrange multipliers), so the factorization
 // must pivot: MUMPS on any number of ranks (PETSc's own LU does not pivot).
 PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm, bool saddlePoint = false);

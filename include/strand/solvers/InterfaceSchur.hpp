@@ -1,0 +1,37 @@
+#pragma once
+// An exact parallel direct solve for chains (cables, belts, tethers): the PETSc PC type
+// "strand_interface_schur", the parallel default of setDirectSolverDefaults.
+//
+// Each rank owns a contiguous segment of the chain. A row is an *interface* row when it couples to
+// a column owned by another rank (a non-empty row of the off-process block of the MPI matrix);
+// every other row is *interior*. With the rows ordered interior (I) then interface (G),
+//   A = [A_II A_IG; A_GI A_GG],
+// an interior row couples only to columns of its own rank, so A_II is block diagonal by rank and,
+// for a structurally symmetric matrix, A_IG and A_GI couple each rank's interior only to its own
+// interface rows. The block elimination (Saad, "Iterative Methods for Sparse Linear Systems",
+// 2nd ed. 2003, sec. 14.2.1: the Schur complement on the interface unknowns) then needs
+//   - one sequential banded LU per rank, of its own interior (PETSc LU, RCM ordering), and
+//   - the interface Schur complement S = A_GG - sum_ranks A_GI A_II^{-1} A_IG, a dense matrix of
+//     the interface size only (12 unknowns per pair of neighbouring ranks on a 3D cable), held on
+//     every rank and factored redundantly:
+//   solve A x = b:  y_I = A_II^{-1} b_I;  S x_G = b_G - A_GI y_I;  x_I = A_II^{-1} (b_I - A_IG x_G).
+// Why: a chain's matrix is banded and a one-rank banded LU is already near-optimal; MUMPS's
+// distributed nested dissection adds its overheads for almost no parallel work (on two ranks its
+// solves took 20 times the one-rank LU's, docs/performance.md).
+//
+// Like PETSc's own LU it does not pivot: for saddle-point matrices (Lagrange multipliers) use
+// MUMPS. The interior solver has the options prefix <pc prefix>schur_interior_ (default: preonly,
+// LU, RCM ordering). Works on one rank too (no interface: a plain LU).
+#include <petscpc.h>
+
+namespace strand::solvers {
+
+inline constexpr const char* kPcInterfaceSchur = "strand_interface_schur";
+
+// Registers the PC type (idempotent; call after PetscInitialize).
+PetscErrorCode InterfaceSchurRegister();
+
+// Sizes after PCSetUp: interface unknowns (all ranks) and this rank's interior unknowns.
+PetscErrorCode InterfaceSchurGetSizes(PC pc, PetscInt* interface, PetscInt* localInterior);
+
+}  // namespace strand::solvers

@@ -1,0 +1,391 @@
+// The interface Schur-complement direct solve for chains (InterfaceSchur.hpp).
+#include "strand/solvers/InterfaceSchur.hpp"
+
+#include <petsc/private/pcimpl.h>
+#include <petscksp.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <vector>
+
+namespace strand::solvers {
+
+namespace {
+
+using RowMajor = Eigen::Matrix<PetscScalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+struct SchurData {
+  bool built = false, failed = false;
+  PetscInt bs = 1, rows = 0;  // block size, local rows
+  std::vector<PetscInt> interface;  // local rows on the interface, ascending
+  // A_II as the local diagonal block with the interface rows and columns replaced by the identity:
+  // no submatrix to extract, and its solution is zero on the interface rows
+  Mat interiorBlock = nullptr;
+  KSP interiorSolver = nullptr;
+  Vec w = nullptr, y = nullptr, t = nullptr;  // local work vectors (y: borrows an array)
+  // A_GI: for each own interface row, its entries in own interior columns (local column, value)
+  std::vector<std::vector<std::pair<PetscInt, PetscScalar>>> agi;
+  // the interface over all ranks: global rows (ascending), counts and offsets per rank
+  std::vector<PetscInt> gamma;
+  std::vector<PetscMPIInt> counts, offsets;
+  PetscInt ownOffset = 0;
+  Eigen::PartialPivLU<Eigen::MatrixXd> schur;
+  // Z = A_II^{-1} A_IG (own interface columns; zero rows on the interface): the interior's response
+  // to unit interface values, computed for S anyway; keeping it saves the second interior solve of
+  // an apply
+  Eigen::MatrixXd Z;
+};
+
+SchurData* dataOf(PC pc) { return static_cast<SchurData*>(pc->data); }
+
+PetscErrorCode clear(SchurData* d) {
+  PetscFunctionBeginUser;
+  PetscCall(MatDestroy(&d->interiorBlock));
+  PetscCall(KSPDestroy(&d->interiorSolver));
+  for (Vec* v : {&d->w, &d->y, &d->t}) PetscCall(VecDestroy(v));
+  d->built = false;
+  PetscFunctionReturn(0);
+}
+
+// The diagonal (own columns) and off-process blocks of the MPI matrix; on one rank the matrix
+// itself and no off-process block.
+PetscErrorCode localBlocks(Mat P, Mat* Ad, Mat* Ao, PetscBool* blocked) {
+  PetscBool mpibaij, mpiaij, seqbaij, seqaij;
+  PetscFunctionBeginUser;
+  PetscObject o = reinterpret_cast<PetscObject>(P);
+  PetscCall(PetscObjectTypeCompare(o, MATMPIBAIJ, &mpibaij));
+  PetscCall(PetscObjectTypeCompare(o, MATMPIAIJ, &mpiaij));
+  PetscCall(PetscObjectTypeCompare(o, MATSEQBAIJ, &seqbaij));
+  PetscCall(PetscObjectTypeCompare(o, MATSEQAIJ, &seqaij));
+  *Ao = nullptr;
+  *blocked = static_cast<PetscBool>(mpibaij || seqbaij);
+  if (mpibaij) PetscCall(MatMPIBAIJGetSeqBAIJ(P, Ad, Ao, nullptr));
+  else if (mpiaij) PetscCall(MatMPIAIJGetSeqAIJ(P, Ad, Ao, nullptr));
+  else if (seqbaij || seqaij) *Ad = P;
+  else SETERRQ(PetscObjectComm(o), PETSC_ERR_SUP, "PC %s needs an AIJ or BAIJ matrix, not %s", kPcInterfaceSchur,
+               o->type_name);
+  PetscFunctionReturn(0);
+}
+
+// Interface rows: the block rows with an entry in the off-process block; and the interface of all
+// ranks, in rank order (ownership is contiguous, so it is ascending).
+PetscErrorCode findInterface(SchurData* d, Mat P) {
+  Mat Ad, Ao;
+  PetscBool blocked;
+  PetscInt rows, cols;
+  PetscFunctionBeginUser;
+  PetscCall(localBlocks(P, &Ad, &Ao, &blocked));
+  PetscCall(MatGetBlockSize(P, &d->bs));
+  PetscCall(MatGetLocalSize(P, &rows, &cols));
+  d->rows = rows;
+  std::vector<char> onInterface(rows / d->bs, 0);
+  if (Ao) {
+    PetscInt n;
+    const PetscInt *ia, *ja;
+    PetscBool done;
+    PetscCall(MatGetRowIJ(Ao, 0, PETSC_FALSE, blocked, &n, &ia, &ja, &done));
+    PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "PC %s: no row structure of the off-process block",
+               kPcInterfaceSchur);
+    const PetscInt rowsPerEntry = rows / n;  // bs for BAIJ's block rows, 1 for AIJ
+    for (PetscInt r = 0; r < n; ++r)
+      if (ia[r + 1] > ia[r]) onInterface[r * rowsPerEntry / d->bs] = 1;
+    PetscCall(MatRestoreRowIJ(Ao, 0, PETSC_FALSE, blocked, &n, &ia, &ja, &done));
+  }
+  d->interface.clear();
+  for (PetscInt r = 0; r < rows; ++r)
+    if (onInterface[r / d->bs]) d->interface.push_back(r);
+
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(P));
+  PetscMPIInt size, rank;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscInt rstart, rend;
+  PetscCall(MatGetOwnershipRange(P, &rstart, &rend));
+  std::vector<PetscInt> own(d->interface);
+  for (PetscInt& r : own) r += rstart;
+  const PetscMPIInt mine = static_cast<PetscMPIInt>(own.size());
+  d->counts.assign(size, 0);
+  d->offsets.assign(size, 0);
+  PetscCallMPI(MPI_Allgather(&mine, 1, MPI_INT, d->counts.data(), 1, MPI_INT, comm));
+  for (PetscMPIInt p = 1; p < size; ++p) d->offsets[p] = d->offsets[p - 1] + d->counts[p - 1];
+  d->ownOffset = d->offsets[rank];
+  d->gamma.assign(d->offsets[size - 1] + d->counts[size - 1], 0);
+  PetscCallMPI(MPI_Allgatherv(own.data(), mine, MPIU_INT, d->gamma.data(), d->counts.data(), d->offsets.data(),
+                              MPIU_INT, comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode createInteriorSolver(PC pc, SchurData* d) {
+  const char* prefix;
+  PC lu;
+  PetscFunctionBeginUser;
+  PetscCall(KSPCreate(PETSC_COMM_SELF, &d->interiorSolver));
+  PetscCall(PCGetOptionsPrefix(pc, &prefix));
+  PetscCall(KSPSetOptionsPrefix(d->interiorSolver, prefix));
+  PetscCall(KSPAppendOptionsPrefix(d->interiorSolver, "schur_interior_"));
+  PetscCall(KSPSetType(d->interiorSolver, KSPPREONLY));
+  PetscCall(KSPGetPC(d->interiorSolver, &lu));
+  PetscCall(PCSetType(lu, PCLU));
+  PetscCall(PCFactorSetMatOrderingType(lu, MATORDERINGRCM));  // keeps the band (StaticSolver.cpp)
+  PetscCall(KSPSetFromOptions(d->interiorSolver));
+  PetscFunctionReturn(0);
+}
+
+// This rank's rows of S, row-major, |own interface| x |interface|: A_GG (all columns on the
+// interface) minus A_GI Z (own interface columns); keeps A_GI's entries and Z.
+PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar>* rows) {
+  const PetscInt nG = static_cast<PetscInt>(d->gamma.size()), mine = static_cast<PetscInt>(d->interface.size());
+  PetscInt rstart, rend;
+  PetscFunctionBeginUser;
+  rows->assign(mine * nG, 0.0);
+  d->agi.assign(mine, {});
+  PetscCall(MatGetOwnershipRange(P, &rstart, &rend));
+  for (PetscInt i = 0; i < mine; ++i) {
+    PetscInt nc;
+    const PetscInt* c;
+    const PetscScalar* v;
+    PetscCall(MatGetRow(P, rstart + d->interface[i], &nc, &c, &v));
+    for (PetscInt k = 0; k < nc; ++k) {
+      auto at = std::lower_bound(d->gamma.begin(), d->gamma.end(), c[k]);
+      if (at != d->gamma.end() && *at == c[k]) (*rows)[i * nG + (at - d->gamma.begin())] += v[k];
+      else if (c[k] >= rstart && c[k] < rend) d->agi[i].emplace_back(c[k] - rstart, v[k]);
+      else
+        SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+                "PC %s needs a structurally symmetric matrix: row %d couples to column %d of another rank, "
+                "which is not on the interface",
+                kPcInterfaceSchur, static_cast<int>(rstart + d->interface[i]), static_cast<int>(c[k]));
+    }
+    PetscCall(MatRestoreRow(P, rstart + d->interface[i], &nc, &c, &v));
+  }
+  // column j of Z: A_II^{-1} A_IG e_j. A_IG e_j is column j of A_d on the interior rows, whose
+  // entries sit (structural symmetry) in the rows named by row j's interior columns.
+  d->Z.resize(d->rows, mine);
+  for (PetscInt j = 0; j < mine; ++j) {
+    PetscScalar* w;
+    PetscCall(VecSet(d->w, 0.0));
+    PetscCall(VecGetArray(d->w, &w));
+    for (const auto& entry : d->agi[j]) PetscCall(MatGetValues(Ad, 1, &entry.first, 1, &d->interface[j], &w[entry.first]));
+    PetscCall(VecRestoreArray(d->w, &w));
+    PetscCall(VecPlaceArray(d->y, d->Z.col(j).data()));
+    PetscCall(KSPSolve(d->interiorSolver, d->w, d->y));
+    PetscCall(VecResetArray(d->y));
+    for (PetscInt i = 0; i < mine; ++i)
+      for (const auto& [col, a] : d->agi[i]) (*rows)[i * nG + d->ownOffset + j] -= a * d->Z(col, j);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode setUp(PC pc) {
+  SchurData* d = dataOf(pc);
+  Mat P = pc->pmat, Ad, Ao;
+  PetscBool blocked;
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(pc));
+  PetscFunctionBeginUser;
+  PetscCall(PCSetFailedReason(pc, PC_NOERROR));
+  if (d->built && pc->flag != SAME_NONZERO_PATTERN) PetscCall(clear(d));
+  PetscCall(localBlocks(P, &Ad, &Ao, &blocked));
+  if (!d->built) {
+    PetscCall(findInterface(d, P));
+    PetscCall(createInteriorSolver(pc, d));
+    PetscCall(MatDuplicate(Ad, MAT_COPY_VALUES, &d->interiorBlock));
+    PetscCall(MatCreateVecs(d->interiorBlock, &d->w, &d->t));
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, d->rows, nullptr, &d->y));
+  } else {
+    PetscCall(MatCopy(Ad, d->interiorBlock, SAME_NONZERO_PATTERN));
+  }
+  PetscCall(MatZeroRowsColumns(d->interiorBlock, static_cast<PetscInt>(d->interface.size()), d->interface.data(), 1.0,
+                               nullptr, nullptr));
+  d->built = true;
+
+  // a zero pivot on one rank fails the solve on all (the apply below is collective)
+  PC lu;
+  PCFailedReason reason = PC_NOERROR;
+  PetscCall(KSPSetOperators(d->interiorSolver, d->interiorBlock, d->interiorBlock));
+  PetscCall(KSPSetUp(d->interiorSolver));
+  PetscCall(KSPGetPC(d->interiorSolver, &lu));
+  PetscCall(PCGetFailedReason(lu, &reason));
+  PetscMPIInt failedHere = reason != PC_NOERROR, failed;
+  PetscCallMPI(MPI_Allreduce(&failedHere, &failed, 1, MPI_INT, MPI_MAX, comm));
+  d->failed = failed;
+  if (failed) {
+    PetscCall(PCSetFailedReason(pc, failedHere ? reason : PC_SUBPC_ERROR));
+    PetscFunctionReturn(0);
+  }
+
+  const PetscInt nG = static_cast<PetscInt>(d->gamma.size());
+  PetscCheck(nG <= 4000, comm, PETSC_ERR_SUP,
+             "PC %s: the interface has %d unknowns, too many for its dense Schur complement (this PC is for "
+             "chains); use MUMPS (-pc_type lu -pc_factor_mat_solver_type mumps with the solver's prefix)",
+             kPcInterfaceSchur, static_cast<int>(nG));
+  std::vector<PetscScalar> mine;
+  PetscCall(ownSchurRows(d, P, Ad, &mine));
+  RowMajor S(nG, nG);
+  std::vector<PetscMPIInt> counts(d->counts), offsets(d->offsets);
+  for (PetscMPIInt& c : counts) c *= static_cast<PetscMPIInt>(nG);
+  for (PetscMPIInt& o : offsets) o *= static_cast<PetscMPIInt>(nG);
+  PetscCallMPI(MPI_Allgatherv(mine.data(), static_cast<PetscMPIInt>(mine.size()), MPIU_SCALAR, S.data(),
+                              counts.data(), offsets.data(), MPIU_SCALAR, comm));
+  d->schur.compute(S);
+  PetscFunctionReturn(0);
+}
+
+// The local part of b with its interface entries zeroed, into w.
+PetscErrorCode interiorPart(SchurData* d, const PetscScalar* b) {
+  PetscScalar* w;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(d->w, &w));
+  std::copy(b, b + d->rows, w);
+  for (PetscInt r : d->interface) w[r] = 0.0;
+  PetscCall(VecRestoreArray(d->w, &w));
+  PetscFunctionReturn(0);
+}
+
+// x_G from the interface right-hand sides g of this rank (all ranks' gathered and solved).
+PetscErrorCode interfaceSolve(PC pc, const std::vector<PetscScalar>& g, bool transpose, Eigen::VectorXd* x) {
+  SchurData* d = dataOf(pc);
+  PetscFunctionBeginUser;
+  Eigen::VectorXd gAll(d->gamma.size());
+  PetscCallMPI(MPI_Allgatherv(g.data(), static_cast<PetscMPIInt>(g.size()), MPIU_SCALAR, gAll.data(),
+                              d->counts.data(), d->offsets.data(), MPIU_SCALAR,
+                              PetscObjectComm(reinterpret_cast<PetscObject>(pc))));
+  *x = transpose ? Eigen::VectorXd(d->schur.transpose().solve(gAll)) : Eigen::VectorXd(d->schur.solve(gAll));
+  PetscFunctionReturn(0);
+}
+
+// y = A^{-1} b:  y_I = A_II^{-1} b_I;  S x_G = b_G - A_GI y_I;  x_I = y_I - Z x_G.
+PetscErrorCode apply(PC pc, Vec b, Vec x) {
+  SchurData* d = dataOf(pc);
+  PetscFunctionBeginUser;
+  if (d->failed) {
+    PetscCall(VecSet(x, 0.0));
+    PetscFunctionReturn(0);
+  }
+  const PetscInt mine = static_cast<PetscInt>(d->interface.size());
+  const PetscScalar* bArray;
+  PetscScalar* xArray;
+  PetscCall(VecGetArrayRead(b, &bArray));
+  PetscCall(interiorPart(d, bArray));
+  PetscCall(VecGetArray(x, &xArray));
+  PetscCall(VecPlaceArray(d->y, xArray));
+  PetscCall(KSPSolve(d->interiorSolver, d->w, d->y));  // zero on the interface rows
+  PetscCall(VecResetArray(d->y));
+  std::vector<PetscScalar> g(mine);
+  for (PetscInt i = 0; i < mine; ++i) {
+    g[i] = bArray[d->interface[i]];
+    for (const auto& [col, a] : d->agi[i]) g[i] -= a * xArray[col];
+  }
+  PetscCall(VecRestoreArrayRead(b, &bArray));
+  Eigen::VectorXd xG;
+  PetscCall(interfaceSolve(pc, g, false, &xG));
+  if (mine > 0) {
+    Eigen::Map<Eigen::VectorXd>(xArray, d->Z.rows()) -= d->Z * xG.segment(d->ownOffset, mine);
+    for (PetscInt i = 0; i < mine; ++i) xArray[d->interface[i]] = xG[d->ownOffset + i];
+  }
+  PetscCall(VecRestoreArray(x, &xArray));
+  PetscFunctionReturn(0);
+}
+
+// y = A^{-T} b, every block transposed: y_I = A_II^{-T} b_I;  S^T x_G = b_G - A_IG^T y_I;
+// x_I = A_II^{-T} (b_I - A_GI^T x_G). A_IG^T y_I and A_GI^T x_G are read off A_d^T times vectors
+// that vanish on the interface or the interior rows.
+PetscErrorCode applyTranspose(PC pc, Vec b, Vec x) {
+  SchurData* d = dataOf(pc);
+  Mat Ad, Ao;
+  PetscBool blocked;
+  PetscFunctionBeginUser;
+  if (d->failed) {
+    PetscCall(VecSet(x, 0.0));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(localBlocks(pc->pmat, &Ad, &Ao, &blocked));
+  const PetscInt mine = static_cast<PetscInt>(d->interface.size());
+  const PetscScalar *bArray, *t;
+  PetscScalar* xArray;
+  PetscCall(VecGetArrayRead(b, &bArray));
+  PetscCall(VecGetArray(x, &xArray));
+  PetscCall(VecPlaceArray(d->y, xArray));
+  PetscCall(interiorPart(d, bArray));
+  PetscCall(KSPSolveTranspose(d->interiorSolver, d->w, d->y));
+  PetscCall(MatMultTranspose(Ad, d->y, d->t));
+  std::vector<PetscScalar> g(mine);
+  PetscCall(VecGetArrayRead(d->t, &t));
+  for (PetscInt i = 0; i < mine; ++i) g[i] = bArray[d->interface[i]] - t[d->interface[i]];
+  PetscCall(VecRestoreArrayRead(d->t, &t));
+  Eigen::VectorXd xG;
+  PetscCall(interfaceSolve(pc, g, true, &xG));
+  PetscCall(VecSet(d->y, 0.0));
+  for (PetscInt i = 0; i < mine; ++i) xArray[d->interface[i]] = xG[d->ownOffset + i];
+  PetscCall(MatMultTranspose(Ad, d->y, d->t));  // A_GI^T x_G on the interior rows
+  PetscCall(VecAYPX(d->t, -1.0, d->w));         // w still holds b_I
+  PetscCall(VecGetArrayRead(d->t, &t));
+  PetscCall(interiorPart(d, t));
+  PetscCall(VecRestoreArrayRead(d->t, &t));
+  PetscCall(KSPSolveTranspose(d->interiorSolver, d->w, d->y));
+  for (PetscInt i = 0; i < mine; ++i) xArray[d->interface[i]] = xG[d->ownOffset + i];
+  PetscCall(VecResetArray(d->y));
+  PetscCall(VecRestoreArray(x, &xArray));
+  PetscCall(VecRestoreArrayRead(b, &bArray));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode reset(PC pc) { return clear(dataOf(pc)); }
+
+PetscErrorCode destroy(PC pc) {
+  PetscFunctionBeginUser;
+  PetscCall(clear(dataOf(pc)));
+  delete dataOf(pc);
+  pc->data = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode view(PC pc, PetscViewer viewer) {
+  SchurData* d = dataOf(pc);
+  PetscBool ascii;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(viewer), PETSCVIEWERASCII, &ascii));
+  if (!ascii || !d->built) PetscFunctionReturn(0);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  interface Schur complement: %d interface unknowns\n",
+                                   static_cast<int>(d->gamma.size())));
+  PetscCall(PetscViewerASCIIPushSynchronized(viewer));
+  PetscCall(PetscViewerASCIISynchronizedPrintf(viewer, "  [%d] interior unknowns %d\n",
+                                               static_cast<int>(PetscGlobalRank),
+                                               static_cast<int>(d->rows - d->interface.size())));
+  PetscCall(PetscViewerFlush(viewer));
+  PetscCall(PetscViewerASCIIPopSynchronized(viewer));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode create(PC pc) {
+  PetscFunctionBeginUser;
+  pc->data = new SchurData();
+  pc->ops->setup = setUp;
+  pc->ops->apply = apply;
+  pc->ops->applytranspose = applyTranspose;
+  pc->ops->reset = reset;
+  pc->ops->destroy = destroy;
+  pc->ops->view = view;
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode InterfaceSchurRegister() {
+  static bool registered = false;
+  PetscFunctionBeginUser;
+  if (!registered) PetscCall(PCRegister(kPcInterfaceSchur, create));
+  registered = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode InterfaceSchurGetSizes(PC pc, PetscInt* interface, PetscInt* localInterior) {
+  PetscBool match;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), kPcInterfaceSchur, &match));
+  PetscCheck(match, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), PETSC_ERR_ARG_WRONG, "PC is not %s",
+             kPcInterfaceSchur);
+  *interface = static_cast<PetscInt>(dataOf(pc)->gamma.size());
+  *localInterior = dataOf(pc)->rows - static_cast<PetscInt>(dataOf(pc)->interface.size());
+  PetscFunctionReturn(0);
+}
+
+}  // namespace strand::solvers

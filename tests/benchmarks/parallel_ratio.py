@@ -1,0 +1,34 @@
+#!/usr/bin/env python3
+"""Issue 3's parallel target: time per step on two ranks against one, measured in one run.
+
+Runs bench_cantilever_dynamics (1 mm steel elements on a 100 m cable, 1e5 elements by default) on
+one rank and then on two, and prints both JSON lines plus one line with the ratio (target <= 0.59).
+Usage: parallel_ratio.py BENCH MPIEXEC [bench options]; defaults as docs/performance.md.
+"""
+import json
+import subprocess
+import sys
+
+
+def run(cmd):
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+    line = [l for l in out.splitlines() if l.startswith("{")][-1]
+    print(line, flush=True)
+    return json.loads(line)
+
+
+def main():
+    bench, mpiexec = sys.argv[1], sys.argv[2]
+    options = sys.argv[3:] or ["-elements", "100000", "-length", "100", "-steps", "40",
+                               "-dyn_ts_strand_alpha_predictor", "displacement"]
+    one = run([bench] + options)
+    two = run([mpiexec, "-n", "2", bench] + options)
+    ratio = two["ms_per_step"] / one["ms_per_step"]
+    same = abs(one["tip_z"] - two["tip_z"]) <= 1e-12 * max(1.0, abs(one["tip_z"]))
+    print(json.dumps({"bench": "parallel_ratio", "elements": one["elements"], "steps": one["steps"],
+                      "ms_per_step_1": one["ms_per_step"], "ms_per_step_2": two["ms_per_step"],
+                      "ratio": round(ratio, 4), "target": 0.59, "same_tip": same}))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,173 @@
+// requirement: the parallel default direct solver (PC strand_interface_schur, InterfaceSchur.hpp)
+// solves A x = b and A^T x = b exactly, on any number of ranks, for the Newton matrices of chains,
+// and a zero pivot on one rank stops the solve on all of them with a PC failure (no hang).
+// Source of the bound: a direct solve by Gaussian elimination is backward stable, the computed x
+// solves (A + dA) x = b with |dA| <= gamma_n |L| |U| (Higham, "Accuracy and Stability of Numerical
+// Algorithms", 2nd ed. 2002, Thm. 9.3); for these banded matrices without growth the normwise
+// backward error ||b - A x|| / (||A|| ||x||) is a few unit round-offs, and 1e-14 is asserted.
+// The same system solved by MUMPS (pivoting, any partition) must give the same x to the forward
+// error bound kappa(A) * 1e-14 (kappa estimated by the ratio of extreme diagonal entries, a lower
+// bound, times 10).
+#include <gtest/gtest.h>
+#include <petscksp.h>
+
+#include <cmath>
+
+#include "strand/solvers/InterfaceSchur.hpp"
+#include "strand/solvers/StaticSolver.hpp"
+#include "support/Scenes.hpp"
+
+using namespace strand;
+using namespace strand::testing;
+
+namespace {
+
+// The generalized-alpha Newton matrix K + c_V D + c_A M of the 3D steel cantilever (60 elements,
+// h = 1 ms: c_A = 1 / (beta h^2)) at a bent state, its columns scaled by 1 + 0.3 sin(i) so that
+// A != A^T (structure unchanged).
+struct Newton3dCantilever {
+  solvers::Problem problem{PETSC_COMM_WORLD, steelCantileverUnderGravity(60)};
+  Mat A = nullptr;
+  Vec X = nullptr, V = nullptr;
+  Newton3dCantilever() {
+    MPI_Comm comm = PETSC_COMM_WORLD;
+    PetscCallAbort(comm, problem.createInitialState(&X, &V));
+    PetscInt lo, hi;
+    PetscCallAbort(comm, VecGetOwnershipRange(X, &lo, &hi));
+    for (PetscInt i = lo; i < hi; ++i) PetscCallAbort(comm, VecSetValue(X, i, 1e-3 * std::sin(0.1 * i), INSERT_VALUES));
+    PetscCallAbort(comm, VecAssemblyBegin(X));
+    PetscCallAbort(comm, VecAssemblyEnd(X));
+    PetscCallAbort(comm, problem.dofs().createMatrix(&A, nullptr));
+    PetscCallAbort(comm, problem.assembler().dynamicJacobian(X, V, 0.0, 2.0e3, 4.0e6, A));
+    Vec scale;
+    PetscCallAbort(comm, VecDuplicate(X, &scale));
+    for (PetscInt i = lo; i < hi; ++i) PetscCallAbort(comm, VecSetValue(scale, i, 1.0 + 0.3 * std::sin(1.0 * i), INSERT_VALUES));
+    PetscCallAbort(comm, VecAssemblyBegin(scale));
+    PetscCallAbort(comm, VecAssemblyEnd(scale));
+    PetscCallAbort(comm, MatDiagonalScale(A, nullptr, scale));
+    PetscCallAbort(comm, VecDestroy(&scale));
+  }
+  ~Newton3dCantilever() {
+    MatDestroy(&A);
+    VecDestroy(&X);
+    VecDestroy(&V);
+  }
+};
+
+KSP solverFor(Mat A, bool mumps) {
+  KSP ksp;
+  PC pc;
+  PetscCallAbort(PETSC_COMM_WORLD, KSPCreate(PETSC_COMM_WORLD, &ksp));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetOperators(ksp, A, A));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetType(ksp, KSPPREONLY));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPGetPC(ksp, &pc));
+  if (mumps) {
+    PetscCallAbort(PETSC_COMM_WORLD, PCSetType(pc, PCLU));
+    PetscCallAbort(PETSC_COMM_WORLD, PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  } else {
+    PetscCallAbort(PETSC_COMM_WORLD, solvers::InterfaceSchurRegister());
+    PetscCallAbort(PETSC_COMM_WORLD, PCSetType(pc, solvers::kPcInterfaceSchur));
+  }
+  return ksp;
+}
+
+double backwardError(Mat A, Vec x, Vec b, bool transpose) {
+  Vec r;
+  PetscReal rn, an, xn;
+  PetscCallAbort(PETSC_COMM_WORLD, VecDuplicate(b, &r));
+  PetscCallAbort(PETSC_COMM_WORLD, transpose ? MatMultTranspose(A, x, r) : MatMult(A, x, r));
+  PetscCallAbort(PETSC_COMM_WORLD, VecAYPX(r, -1.0, b));
+  PetscCallAbort(PETSC_COMM_WORLD, VecNorm(r, NORM_INFINITY, &rn));
+  PetscCallAbort(PETSC_COMM_WORLD, MatNorm(A, NORM_INFINITY, &an));
+  PetscCallAbort(PETSC_COMM_WORLD, VecNorm(x, NORM_INFINITY, &xn));
+  PetscCallAbort(PETSC_COMM_WORLD, VecDestroy(&r));
+  return rn / (an * xn);
+}
+
+// max |a_ii| / min |a_ii|: a lower bound of the condition number
+double diagonalSpread(Mat A) {
+  Vec d;
+  PetscReal big, small;
+  PetscCallAbort(PETSC_COMM_WORLD, MatCreateVecs(A, &d, nullptr));
+  PetscCallAbort(PETSC_COMM_WORLD, MatGetDiagonal(A, d));
+  PetscCallAbort(PETSC_COMM_WORLD, VecAbs(d));
+  PetscCallAbort(PETSC_COMM_WORLD, VecMax(d, nullptr, &big));
+  PetscCallAbort(PETSC_COMM_WORLD, VecMin(d, nullptr, &small));
+  PetscCallAbort(PETSC_COMM_WORLD, VecDestroy(&d));
+  return big / small;
+}
+
+}  // namespace
+
+TEST(InterfaceSchur, SolvesTheNewtonMatrixOfAChainLikeMumps) {
+  Newton3dCantilever c;
+  Vec b, x, ref;
+  PetscCallAbort(PETSC_COMM_WORLD, MatCreateVecs(c.A, &x, &b));
+  PetscCallAbort(PETSC_COMM_WORLD, VecDuplicate(x, &ref));
+  PetscCallAbort(PETSC_COMM_WORLD, VecSetRandom(b, nullptr));
+  const double kappaBound = 10.0 * diagonalSpread(c.A);
+  for (bool transpose : {false, true}) {
+    KSP schur = solverFor(c.A, false), mumps = solverFor(c.A, true);
+    PetscCallAbort(PETSC_COMM_WORLD, transpose ? KSPSolveTranspose(schur, b, x) : KSPSolve(schur, b, x));
+    PetscCallAbort(PETSC_COMM_WORLD, transpose ? KSPSolveTranspose(mumps, b, ref) : KSPSolve(mumps, b, ref));
+    const double eta = backwardError(c.A, x, b, transpose);
+    PetscReal diff, norm;
+    PetscCallAbort(PETSC_COMM_WORLD, VecNorm(ref, NORM_INFINITY, &norm));
+    PetscCallAbort(PETSC_COMM_WORLD, VecAXPY(ref, -1.0, x));
+    PetscCallAbort(PETSC_COMM_WORLD, VecNorm(ref, NORM_INFINITY, &diff));
+    PetscPrintf(PETSC_COMM_WORLD, "transpose %d: backward error %.3e, |x - x_mumps| / |x| = %.3e (bound %.3e)\n",
+                static_cast<int>(transpose), eta, diff / norm, kappaBound * 1e-14);
+    EXPECT_LT(eta, 1e-14);
+    EXPECT_LT(diff / norm, kappaBound * 1e-14);
+    KSPDestroy(&schur);
+    KSPDestroy(&mumps);
+  }
+  VecDestroy(&b);
+  VecDestroy(&x);
+  VecDestroy(&ref);
+}
+
+// 61 nodes of two 3-unknown blocks (r, r'), partitioned by METIS by block: a cut between two nodes
+// is spanned by one element, whose two nodes are the interface (12 unknowns); a cut between a
+// node's r and r' blocks by the two elements at that node (three nodes, 18 unknowns). Every other
+// row is interior.
+TEST(InterfaceSchur, TheInterfaceIsTheTwoNodesOfEachCutElement) {
+  Newton3dCantilever c;
+  KSP ksp = solverFor(c.A, false);
+  PC pc;
+  PetscMPIInt size;
+  PetscInt interface, interior, total;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetUp(ksp));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPGetPC(ksp, &pc));
+  PetscCallAbort(PETSC_COMM_WORLD, solvers::InterfaceSchurGetSizes(pc, &interface, &interior));
+  MPI_Allreduce(&interior, &total, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+  EXPECT_GE(interface, 12 * (size - 1));
+  EXPECT_LE(interface, 18 * (size - 1));
+  EXPECT_EQ(interface % 3, 0);
+  EXPECT_EQ(total + interface, 61 * 6);
+  KSPDestroy(&ksp);
+}
+
+// A zero row in rank 0's interior (the middle of its segment): PETSc's LU finds an exact zero pivot there; every rank must
+// return from the solve (the interface solve is collective) with KSP_DIVERGED_PC_FAILED.
+TEST(InterfaceSchur, AZeroPivotOnOneRankFailsTheSolveOnAll) {
+  Newton3dCantilever c;
+  PetscInt lo, hi;
+  PetscCallAbort(PETSC_COMM_WORLD, MatGetOwnershipRange(c.A, &lo, &hi));
+  PetscMPIInt rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const PetscInt row = lo + 6 * ((hi - lo) / 12);  // a node in the middle of rank 0's segment
+  PetscCallAbort(PETSC_COMM_WORLD, MatZeroRows(c.A, rank == 0 ? 1 : 0, &row, 0.0, nullptr, nullptr));
+  KSP ksp = solverFor(c.A, false);
+  Vec b, x;
+  PetscCallAbort(PETSC_COMM_WORLD, MatCreateVecs(c.A, &x, &b));
+  PetscCallAbort(PETSC_COMM_WORLD, VecSet(b, 1.0));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSolve(ksp, b, x));
+  KSPConvergedReason reason;
+  PetscCallAbort(PETSC_COMM_WORLD, KSPGetConvergedReason(ksp, &reason));
+  EXPECT_EQ(reason, KSP_DIVERGED_PC_FAILED);
+  KSPDestroy(&ksp);
+  VecDestroy(&b);
+  VecDestroy(&x);
+}
