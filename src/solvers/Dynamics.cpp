@@ -82,7 +82,6 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
     return;
   }
   SNES snes;
-  SNESLineSearch ls;
   KSP ksp;
   PetscCallAbort(comm, TSGetSNES(_ts, &snes));
   PetscCallAbort(comm, SNESSetTolerances(snes, 0.0, 1e-10, 1e-12, 25, PETSC_DEFAULT));
@@ -91,8 +90,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   // as in statics: the residual has a round-off floor (NewtonConvergence.cpp)
   _floor.coordinateNorm = assembler.coordinateNorm();
   PetscCallAbort(comm, SNESSetConvergenceTest(snes, roundoffFloorConvergence, &_floor, nullptr));
-  PetscCallAbort(comm, SNESGetLineSearch(snes, &ls));
-  PetscCallAbort(comm, SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  PetscCallAbort(comm, useFullNewtonStep(snes, &_floor));  // no residual the step test discards
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
   PetscCallAbort(comm, setDirectSolverDefaults(ksp, comm, _constrained));
   if (_constrainedSpace) {  // the assembled 2n x 2n Newton matrix, by the direct solver above

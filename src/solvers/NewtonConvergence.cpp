@@ -23,6 +23,67 @@ namespace strand::solvers {
 //    (NewtonMatrixReuse) theta is its linear rate;
 //  - with a singular tangent the iterates run away, |u| grows and |du|/|u| shrinks while |R| is
 //    1e28 (seen with an unsupported cable): the residual test rejects that.
+namespace {
+
+// The step test: after the correction du_it (|du_it| = snorm, the one before: previousStep), is the
+// error left below stol max(|u|, |q0|)?
+bool stepConverged(const NewtonFloor& floor, PetscInt it, PetscReal previousStep, PetscReal snorm, PetscReal xnorm,
+                   PetscReal stol) {
+  const PetscReal theta = it >= 2 && previousStep > 0.0 ? snorm / previousStep : 0.0;
+  const PetscReal error = theta > 0.0 && theta < 0.5 ? theta / (1.0 - theta) * snorm : snorm;
+  return it > 0 && error < stol * std::max(xnorm, floor.coordinateNorm);
+}
+
+// SNESLINESEARCHBASIC (the full step X - lambda Y) without the residual at the new iterate when the
+// test below will accept it on its step alone: the residual would only be discarded.
+PetscErrorCode fullStep(SNESLineSearch ls, void* ctx) {
+  const auto* floor = static_cast<const NewtonFloor*>(ctx);
+  SNES snes;
+  Vec X, F, Y, W;
+  PetscReal xnorm, fnorm, ynorm, lambda, stol;
+  PetscInt it;
+  PetscFunctionBeginUser;
+  PetscCall(SNESLineSearchGetSNES(ls, &snes));
+  PetscCall(SNESLineSearchGetVecs(ls, &X, &F, &Y, &W, nullptr));
+  PetscCall(SNESLineSearchGetNorms(ls, &xnorm, &fnorm, &ynorm));
+  PetscCall(SNESLineSearchGetLambda(ls, &lambda));
+  PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_SUCCEEDED));
+  PetscCall(VecWAXPY(W, -lambda, Y, X));
+  PetscCall(VecNormBegin(Y, NORM_2, &ynorm));
+  PetscCall(VecNormBegin(W, NORM_2, &xnorm));
+  PetscCall(VecNormEnd(Y, NORM_2, &ynorm));
+  PetscCall(VecNormEnd(W, NORM_2, &xnorm));
+  PetscCall(SNESGetIterationNumber(snes, &it));
+  PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
+  // the test of iteration it + 1 sees |R| of this iterate (fnorm <= fnorm0 lets it accept)
+  const bool accepted = floor->iteration == it && floor->fnorm <= floor->fnorm0 &&
+                        stepConverged(*floor, it + 1, floor->step, ynorm, xnorm, stol);
+  if (!accepted) {
+    PetscBool domainError;
+    PetscCall(SNESComputeFunction(snes, W, F));
+    PetscCall(SNESGetFunctionDomainError(snes, &domainError));
+    if (domainError) {
+      PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_DOMAIN));
+      PetscFunctionReturn(0);
+    }
+    PetscCall(VecNorm(F, NORM_2, &fnorm));
+  }
+  PetscCall(SNESLineSearchSetNorms(ls, xnorm, fnorm, ynorm));
+  PetscCall(VecCopy(W, X));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode useFullNewtonStep(SNES snes, NewtonFloor* floor) {
+  SNESLineSearch ls;
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetLineSearch(snes, &ls));
+  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHSHELL));
+  PetscCall(SNESLineSearchShellSetUserFunc(ls, fullStep, floor));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                                         SNESConvergedReason* reason, void* ctx) {
   PetscFunctionBeginUser;
@@ -39,9 +100,7 @@ PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm,
   PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
   PetscReal stol;
   PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
-  const PetscReal theta = floor->contraction();
-  const PetscReal error = theta > 0.0 && theta < 0.5 ? theta / (1.0 - theta) * snorm : snorm;
-  if (*reason == SNES_CONVERGED_ITERATING && it > 0 && error < stol * std::max(xnorm, floor->coordinateNorm))
+  if (*reason == SNES_CONVERGED_ITERATING && stepConverged(*floor, it, floor->previousStep, snorm, xnorm, stol))
     *reason = SNES_CONVERGED_SNORM_RELATIVE;
   if (*reason == SNES_CONVERGED_SNORM_RELATIVE && fnorm > floor->fnorm0) *reason = SNES_CONVERGED_ITERATING;
   if (!std::isfinite(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;

@@ -45,9 +45,7 @@ StaticSolver::StaticSolver(assembly::Assembler& assembler, int loadSteps) : _asm
   PetscCallAbort(dofs.comm(), SNESSetDivergenceTolerance(_snes, -1.0));
   _floor.coordinateNorm = assembler.coordinateNorm();
   PetscCallAbort(dofs.comm(), SNESSetConvergenceTest(_snes, roundoffFloorConvergence, &_floor, nullptr));
-  SNESLineSearch ls;
-  PetscCallAbort(dofs.comm(), SNESGetLineSearch(_snes, &ls));
-  PetscCallAbort(dofs.comm(), SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  PetscCallAbort(dofs.comm(), useFullNewtonStep(_snes, &_floor));  // no residual the step test discards
   KSP ksp;
   PetscCallAbort(dofs.comm(), SNESGetKSP(_snes, &ksp));
   PetscCallAbort(dofs.comm(), setDirectSolverDefaults(ksp, dofs.comm(), assembler.hasConstraints()));

@@ -267,37 +267,52 @@ public:
   }
 
 private:
-  // Pointwise generalized force f_G = N de/dG + m . dkappa/dG.
+  // Pointwise generalized force f_G = N de/dG + m . dkappa/dG, with dkappa_i/dG = A dc_i/dG -
+  // 3 c_i B (r', 0) (A = s^-3/2, B = s^-5/2, s = r'.r'). The sum over the curvature components
+  // collapses: sum_i m_i dc_i/dG = (r'' x m, m x r') for c = r' x r'' (2D: m along z), so
+  //   f_G = (N r' - 3 B (m.c) r' + A r'' x m,  A m x r').
+  // The curvature rate (damping) is A dc - 3 B c (r'.r'_dot) with dc = r'_dot x r'' + r' x r''_dot.
   template <class S>
   static void pointForce(const CableSection& sec, const Geometry& geo, int g, const S& eps, const S* G, const S* Gd,
                          S* fG) {
-    S s = G[0] * G[0];
-    for (int i = 1; i < D; ++i) s += G[i] * G[i];
+    const S* g1 = G;
+    const S* g2 = G + D;
+    S s = g1[0] * g1[0];
+    for (int i = 1; i < D; ++i) s += g1[i] * g1[i];
     using std::sqrt;
     const S A = 1.0 / (s * sqrt(s)), B = A / s;  // s^(-3/2), s^(-5/2)
-    S c[kCurv], cG[kCurv][kG];
-    cross(G, G + D, c);
-    crossGradient(G, cG);
-    S tension = sec.EA * eps;
+    S c[kCurv];
+    cross(g1, g2, c);
+    S tension = sec.EA * eps, stretchRate(0.0), dc[kCurv];
     if (Gd) {
-      S epsDot = G[0] * Gd[0];
-      for (int i = 1; i < D; ++i) epsDot += G[i] * Gd[i];
-      tension += sec.EA * sec.dampAxial * epsDot;
+      for (int i = 0; i < D; ++i) stretchRate += g1[i] * Gd[i];
+      tension += sec.EA * sec.dampAxial * stretchRate;
+      S d1[kCurv], d2[kCurv];
+      cross(Gd, g2, d1);
+      cross(g1, Gd + D, d2);
+      for (int i = 0; i < kCurv; ++i) dc[i] = d1[i] + d2[i];
     }
-    for (int k = 0; k < kG; ++k) fG[k] = S(0.0);
-    for (int i = 0; i < D; ++i) fG[i] = tension * G[i];
+    S m[kCurv], mu(0.0);
     for (int ci = 0; ci < kCurv; ++ci) {
-      S J[kG];  // dkappa_ci/dG = A dc/dG - 3 c B (r', 0)
-      for (int k = 0; k < kG; ++k) J[k] = A * cG[ci][k];
-      for (int i = 0; i < D; ++i) J[i] -= 3.0 * c[ci] * B * G[i];
       const double k0 = (geo.kappa0 && D == 2) ? geo.kappa0[g * kCurv + ci] : 0.0;
-      S moment = sec.EI * (c[ci] * A - k0);
-      if (Gd) {
-        S kDot(0.0);
-        for (int k = 0; k < kG; ++k) kDot += J[k] * Gd[k];
-        moment += sec.EI * sec.dampBending * kDot;
-      }
-      for (int k = 0; k < kG; ++k) fG[k] += moment * J[k];
+      m[ci] = sec.EI * (c[ci] * A - k0);
+      if (Gd) m[ci] += sec.EI * sec.dampBending * (A * dc[ci] - 3.0 * B * c[ci] * stretchRate);
+      mu += m[ci] * c[ci];
+    }
+    S mc1[D], mc2[D];  // sum_i m_i dc_i/dr', sum_i m_i dc_i/dr''
+    if constexpr (D == 2) {
+      mc1[0] = g2[1] * m[0];
+      mc1[1] = -g2[0] * m[0];
+      mc2[0] = -g1[1] * m[0];
+      mc2[1] = g1[0] * m[0];
+    } else {
+      cross(g2, m, mc1);
+      cross(m, g1, mc2);
+    }
+    const S axial = tension - 3.0 * B * mu;
+    for (int i = 0; i < D; ++i) {
+      fG[i] = axial * g1[i] + A * mc1[i];
+      fG[D + i] = A * mc2[i];
     }
   }
 
@@ -343,7 +358,6 @@ private:
     const double A = 1.0 / (s * std::sqrt(s)), B = A / s, C7 = B / s;
     double c[kCurv], cG[kCurv][kG];
     cross(G, G + D, c);
-    crossGradient(G, cG);
     double tension = sec.EA * eps;
     const double cEps = Gd ? sec.dampAxial : 0.0, cKap = Gd ? sec.dampBending : 0.0;
     if (Gd) {
@@ -367,6 +381,13 @@ private:
         }
       }
     }
+    if constexpr (D == 3) {
+      if (cKap == 0.0) {  // no curvature-rate damping: the closed form below
+        bendingTangent3d(sec.EI, A, B, C7, G, c, fG, KG);
+        return;
+      }
+    }
+    crossGradient(G, cG);
     // bending part. sum_i m_i H_i collapses to rank-one terms in w = sum_i m_i c_i,G and
     // mu = sum_i m_i c_i (plus the constant c_i,GG), so no Hessian is formed per component.
     double J[kCurv][kG], moment[kCurv], w[kG] = {}, mu = 0.0;
@@ -432,6 +453,56 @@ private:
             KG[a][b] += sec.EI * cKap * J[ci][a] * HGd[b];
             DG[a][b] += sec.EI * cKap * J[ci][a] * J[ci][b];
           }
+      }
+    }
+  }
+
+  // The bending part of pointTangent in 3D without curvature-rate damping, summed over the three
+  // curvature components in closed form. With C = dc/dG = [-[r'']x, [r']x] (3 x 6), the moments
+  // m = EI A c, mu = m.c, p = m + EI A c and z = C^T p = (r'' x p, p x r'):
+  //   EI sum_i J_i J_i^T = EI (A^2 C^T C - 3AB (C^T c e^T + e c^T C) + 9 B^2 |c|^2 e e^T),
+  //   C^T C = [[|r''|^2 I - r'' r''^T, r' r''^T - (r'.r'') I], [sym., |r'|^2 I - r' r'^T]]
+  // ([a]x^T [b]x = (a.b) I - b a^T), and with pointTangent's moment terms
+  //   K_G += (9 EI B^2 |c|^2 + 15 mu s^-7/2) e e^T - 3 mu B P1 - 3B (z e^T + e z^T)
+  //          + EI A^2 C^T C + A [[0, E], [E^T, 0]],   E_jk = sum_i m_i eps_ijk,
+  // and f_G += (-3 B mu r' + A r'' x m, A m x r'). Same terms as the general path, fewer flops.
+  static void bendingTangent3d(double EI, double A, double B, double C7, const double* G, const double* c, double* fG,
+                               double KG[kG][kG]) {
+    const double* g1 = G;
+    const double* g2 = G + 3;
+    double m[3], p[3], mu = 0.0, cc = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      m[i] = EI * A * c[i];
+      p[i] = 2.0 * m[i];  // m + EI A c
+      mu += m[i] * c[i];
+      cc += c[i] * c[i];
+    }
+    double mc1[3], mc2[3], z1[3], z2[3];
+    cross(g2, m, mc1);
+    cross(m, g1, mc2);
+    cross(g2, p, z1);
+    cross(p, g1, z2);
+    double s1 = 0.0, s2 = 0.0, s12 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      s1 += g1[i] * g1[i];
+      s2 += g2[i] * g2[i];
+      s12 += g1[i] * g2[i];
+      fG[i] += -3.0 * B * mu * g1[i] + A * mc1[i];
+      fG[3 + i] += A * mc2[i];
+    }
+    const double a2 = EI * A * A, ee = 9.0 * EI * B * B * cc + 15.0 * mu * C7;
+    const double E[3][3] = {{0.0, m[2], -m[1]}, {-m[2], 0.0, m[0]}, {m[1], -m[0], 0.0}};
+    for (int j = 0; j < 3; ++j) {
+      KG[j][j] += a2 * s2 - 3.0 * mu * B;
+      KG[3 + j][3 + j] += a2 * s1;
+      KG[j][3 + j] -= a2 * s12;
+      KG[3 + j][j] -= a2 * s12;
+      for (int k = 0; k < 3; ++k) {
+        KG[j][k] += ee * g1[j] * g1[k] - a2 * g2[j] * g2[k] - 3.0 * B * (z1[j] * g1[k] + g1[j] * z1[k]);
+        const double offDiagonal = a2 * g1[j] * g2[k] + A * E[j][k] - 3.0 * B * g1[j] * z2[k];
+        KG[j][3 + k] += offDiagonal;
+        KG[3 + k][j] += offDiagonal;
+        KG[3 + j][3 + k] -= a2 * g1[j] * g1[k];
       }
     }
   }

@@ -21,4 +21,10 @@ struct NewtonFloor {
 PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                                         SNESConvergedReason* reason, void* ctx);
 
+// The full Newton step of SNESLINESEARCHBASIC as a shell line search that skips the residual at
+// the new iterate when roundoffFloorConvergence (ctx floor) will accept that iterate on its step
+// test alone: the accepted solution is the same, one residual per solve cheaper (the last
+// iteration's reported |R| is then the one before it). -<prefix>snes_linesearch_type overrides it.
+PetscErrorCode useFullNewtonStep(SNES snes, NewtonFloor* floor);
+
 }  // namespace strand::solvers
