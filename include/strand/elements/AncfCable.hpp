@@ -132,13 +132,18 @@ public:
     S U(0.0);
     for (int g = 0; g < tab.size(); ++g) {
       const Slots sl = slotsAt(geo, tab, g);
-      S G[kG], kap[kCurv];
+      S G[kG];
       const S eps = kinematics(sl, q0, u, G);
-      curvature(G, kap);
       S w = 0.5 * sec.EA * eps * eps;
-      for (int i = 0; i < kCurv; ++i) {
-        const double k0 = (geo.kappa0 && D == 2) ? geo.kappa0[g * kCurv + i] : 0.0;
-        w += 0.5 * sec.EI * (kap[i] - k0) * (kap[i] - k0);
+      if constexpr (D == 3) {  // no reference curvature: |kappa|^2 = |r' x r''|^2 / s^3, no root
+        S c[3], s = G[0] * G[0] + G[1] * G[1] + G[2] * G[2];
+        cross(G, G + D, c);
+        w += 0.5 * sec.EI * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / (s * s * s);
+      } else {
+        S kap[kCurv];
+        curvature(G, kap);
+        const double k0 = geo.kappa0 ? geo.kappa0[g] : 0.0;
+        w += 0.5 * sec.EI * (kap[0] - k0) * (kap[0] - k0);
       }
       U += tab.rule.w[g] * geo.length * w;
     }
