@@ -16,7 +16,7 @@ using RowMajor = Eigen::Matrix<PetscScalar, Eigen::Dynamic, Eigen::Dynamic, Eige
 
 struct SchurData {
   bool built = false, failed = false;
-  PetscInt bs = 1, rows = 0;  // block size, local rows
+  PetscInt rows = 0;  // local rows
   std::vector<PetscInt> interface;  // local rows on the interface, ascending
   // A_II as the local diagonal block with the interface rows and columns replaced by the identity:
   // no submatrix to extract, and its solution is zero on the interface rows
@@ -72,13 +72,13 @@ PetscErrorCode localBlocks(Mat P, Mat* Ad, Mat* Ao, PetscBool* blocked) {
 PetscErrorCode findInterface(SchurData* d, Mat P) {
   Mat Ad, Ao;
   PetscBool blocked;
-  PetscInt rows, cols;
+  PetscInt rows, cols, bs;
   PetscFunctionBeginUser;
   PetscCall(localBlocks(P, &Ad, &Ao, &blocked));
-  PetscCall(MatGetBlockSize(P, &d->bs));
+  PetscCall(MatGetBlockSize(P, &bs));
   PetscCall(MatGetLocalSize(P, &rows, &cols));
   d->rows = rows;
-  std::vector<char> onInterface(rows / d->bs, 0);
+  std::vector<char> onInterface(rows / bs, 0);
   if (Ao) {
     PetscInt n;
     const PetscInt *ia, *ja;
@@ -88,12 +88,12 @@ PetscErrorCode findInterface(SchurData* d, Mat P) {
                kPcInterfaceSchur);
     const PetscInt rowsPerEntry = rows / n;  // bs for BAIJ's block rows, 1 for AIJ
     for (PetscInt r = 0; r < n; ++r)
-      if (ia[r + 1] > ia[r]) onInterface[r * rowsPerEntry / d->bs] = 1;
+      if (ia[r + 1] > ia[r]) onInterface[r * rowsPerEntry / bs] = 1;
     PetscCall(MatRestoreRowIJ(Ao, 0, PETSC_FALSE, blocked, &n, &ia, &ja, &done));
   }
   d->interface.clear();
   for (PetscInt r = 0; r < rows; ++r)
-    if (onInterface[r / d->bs]) d->interface.push_back(r);
+    if (onInterface[r / bs]) d->interface.push_back(r);
 
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(P));
   PetscMPIInt size, rank;

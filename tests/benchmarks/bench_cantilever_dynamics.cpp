@@ -52,10 +52,7 @@ int main(int argc, char** argv) {
     PetscCall(PetscTime(&t0));
     solvers::Problem p(PETSC_COMM_WORLD, sc);
     Vec X, V;
-    PetscCall(p.dofs().createVector(&X));
-    PetscCall(VecDuplicate(X, &V));
-    PetscCall(p.assembler().initialState(X));
-    PetscCall(VecSet(V, 0.0));
+    PetscCall(p.createInitialState(&X, &V));
     solvers::Dynamics dyn(p.assembler(), dd);
     PetscCall(dyn.setFromOptions());
     long newton = 0, done = 0;

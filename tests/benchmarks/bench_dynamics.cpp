@@ -29,10 +29,7 @@ int main(int argc, char** argv) {
     d.dt = 1e-3;
     d.tEnd = tEnd;
     Vec X, V;
-    PetscCall(p.dofs().createVector(&X));
-    PetscCall(VecDuplicate(X, &V));
-    PetscCall(p.assembler().initialState(X));
-    PetscCall(VecSet(V, 0.0));
+    PetscCall(p.createInitialState(&X, &V));
     solvers::Dynamics dyn(p.assembler(), d);
     PetscCall(dyn.setFromOptions());
     long newton = 0, steps = 0;

@@ -188,10 +188,7 @@ TEST(ParallelAgreement, LongFlexibleChainTrajectory) {
   auto trajectory = [&](MPI_Comm comm) {
     solvers::Problem p(comm, sc);
     Vec X, V;
-    PetscCallAbort(comm, p.dofs().createVector(&X));
-    PetscCallAbort(comm, VecDuplicate(X, &V));
-    PetscCallAbort(comm, p.assembler().initialState(X));
-    PetscCallAbort(comm, VecSet(V, 0.0));
+    PetscCallAbort(comm, p.createInitialState(&X, &V));
     std::vector<double> tip;
     solvers::Dynamics dyn(p.assembler(), d);
     solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep&, Vec Xs, Vec) -> PetscErrorCode {

@@ -138,10 +138,7 @@ inline TipSeries runAncfSpinUp(double E, double omega0, int elements, double dt,
   model::DynamicsDesc d = fixedStep(model::Integrator::GeneralizedAlpha, dt, tEnd);
   d.rhoInf = 0.9;
   Vec X, V;
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &V));
-  PetscCallAbort(comm, p.assembler().initialState(X));
-  PetscCallAbort(comm, VecSet(V, 0.0));
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
   solvers::Dynamics dyn(p.assembler(), d);
   PetscCallAbort(comm, dyn.setFromOptions());
   TipSeries s;

@@ -49,10 +49,7 @@ inline PendulumRun runPendulum(const model::SceneDescription& sc, const model::D
   solvers::Problem p(PETSC_COMM_WORLD, sc);
   MPI_Comm comm = PETSC_COMM_WORLD;
   Vec X, V;
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &V));
-  PetscCallAbort(comm, p.assembler().initialState(X));
-  PetscCallAbort(comm, VecSet(V, 0.0));
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
   PendulumRun out;
   out.scale = sc.bodies[0].rho * sc.bodies[0].A * 1.0 * 9.81 * 0.5;
   solvers::Dynamics dyn(p.assembler(), d);

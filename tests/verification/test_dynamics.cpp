@@ -69,9 +69,7 @@ double quarterPeriodError(const model::DynamicsDesc& base, int stepsPerPeriod, d
   solvers::Problem p(PETSC_COMM_WORLD, sc);
   MPI_Comm comm = PETSC_COMM_WORLD;
   Vec X, V;
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &V));
-  PetscCallAbort(comm, p.assembler().initialState(X));
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
   solvers::ModalResult r;
   PetscCallAbort(comm, solvers::solveModes(p.assembler(), X, 1, &r));
   const double omega = r.omega[0];
@@ -222,10 +220,7 @@ CantileverRelease releaseCantilever(int elements, double dt, int steps, const st
   dd.tEnd = steps * dt;
   solvers::Problem p(comm, sc);
   Vec X, V;
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &V));
-  PetscCallAbort(comm, p.assembler().initialState(X));
-  PetscCallAbort(comm, VecSet(V, 0.0));
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
   for (size_t k = 0; k + 1 < options.size(); k += 2)
     PetscCallAbort(comm, PetscOptionsSetValue(nullptr, options[k].c_str(), options[k + 1].c_str()));
   CantileverRelease r;

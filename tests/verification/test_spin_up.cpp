@@ -61,11 +61,8 @@ SpinUp spinUp(double omega0, double E, int elements, double dt, double tEnd, dou
   d.dt = dt;
   d.tEnd = tEnd;
   Vec X, V, F;
-  PetscCallAbort(comm, p.dofs().createVector(&X));
-  PetscCallAbort(comm, VecDuplicate(X, &V));
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
   PetscCallAbort(comm, VecDuplicate(X, &F));
-  PetscCallAbort(comm, p.assembler().initialState(X));
-  PetscCallAbort(comm, VecSet(V, 0.0));
   solvers::Dynamics dyn(p.assembler(), d);
   SpinUp out;
   double e0 = 0.0;

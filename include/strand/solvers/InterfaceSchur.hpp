@@ -12,7 +12,7 @@
 // 2nd ed. 2003, sec. 14.2.1: the Schur complement on the interface unknowns) then needs
 //   - one sequential banded LU per rank, of its own interior (PETSc LU, RCM ordering), and
 //   - the interface Schur complement S = A_GG - sum_ranks A_GI A_II^{-1} A_IG, a dense matrix of
-//     the interface size only (12 unknowns per pair of neighbouring ranks on a 3D cable), held on
+//     the interface size only (12-18 unknowns per cut between two ranks of a 3D cable), held on
 //     every rank and factored redundantly:
 //   solve A x = b:  y_I = A_II^{-1} b_I;  S x_G = b_G - A_GI y_I;  x_I = A_II^{-1} (b_I - A_IG x_G).
 // Why: a chain's matrix is banded and a one-rank banded LU is already near-optimal; MUMPS's
