@@ -714,8 +714,10 @@ PetscErrorCode Assembler::prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) con
     }
   }
   for (const auto& [owned, k] : _movedCoordinates) {
-    const model::TimeValue f = _model.prescribedCoordinates()[k].function.at(t);
-    if (x) x[owned] = f.f;
+    // the scene's angle is the one at t = 0: phi = angle + f(t) - f(0) (user-guide, "Turning hubs")
+    const model::TimeFunction& function = _model.prescribedCoordinates()[k].function;
+    const model::TimeValue f = function.at(t);
+    if (x) x[owned] = f.f - function.at(0.0).f;
     if (v) v[owned] = f.df;
     if (a) a[owned] = f.ddf;
   }

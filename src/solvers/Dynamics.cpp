@@ -108,6 +108,7 @@ Dynamics::~Dynamics() {
   KSPDestroy(&_massSolver);
   VecDestroy(&_Y);
   VecDestroy(&_acc);
+  VecDestroy(&_ydot);
   VecDestroy(&_resume.A);
   VecDestroy(&_resume.a);
   for (Vec& v : _resume.history) VecDestroy(&v);
@@ -156,9 +157,9 @@ PetscErrorCode Dynamics::setFromOptions() {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Dynamics::prescribe(PetscReal t, Vec X, void* ctx) {
+PetscErrorCode Dynamics::prescribe(PetscReal t, Vec X, Vec V, Vec A, void* ctx) {
   PetscFunctionBeginUser;
-  PetscCall(static_cast<Dynamics*>(ctx)->_asm.prescribedMotion(t, X, nullptr, nullptr));
+  PetscCall(static_cast<Dynamics*>(ctx)->_asm.prescribedMotion(t, X, V, A));
   PetscFunctionReturn(0);
 }
 
@@ -186,11 +187,16 @@ PetscErrorCode Dynamics::createMassSolver(Vec X, KSP* ksp) {
 
 // Consistent start. Without joints: M a0 = f_ext - f_int(u0, v0) on the free rows, a0 = the
 // prescribed acceleration on supported rows. With joints (index 3): the initial velocities are
-// first projected onto the constraint manifold in the mass metric, [M G^T; G 0] [v; nu] = [M v; 0],
-// then [M G^T; G 0] [a0; lambda0] = [f_ext - f_int; -(d/dq (G v)) v] gives the accelerations and the
-// multipliers (mu0 = lambda0 / s into X): the TS's first Newton then starts at the solution of t0.
-// One factorization serves both solves.
-PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
+// first projected onto the constraint manifold in the mass metric, [M G^T; G 0] [v; nu] =
+// [M v; -G_s v_p], then [M G^T; G 0] [a0; lambda0] = [f_ext - f_int - M a_p; -(d/dq (G v)) v -
+// G_s a_p] gives the accelerations and the multipliers (mu0 = lambda0 / s into X): the TS's first
+// Newton then starts at the solution of t0. The matrix holds only the free columns of G; G_s v_p and
+// G_s a_p are the joints' rates due to a driven body's prescribed velocity and acceleration (a hub
+// that starts turning, or accelerating, at t0). One factorization serves both solves.
+// consistentAcceleration(t, ..., project = false) solves for a and lambda at (t, X, V) as given.
+PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) { return consistentAcceleration(0.0, X, V, A, true); }
+
+PetscErrorCode Dynamics::consistentAcceleration(PetscReal t, Vec X, Vec V, Vec A, bool project) {
   PetscFunctionBeginUser;
   if (_constrained) {
     PetscCall(VecPointwiseMult(V, V, _notMultiplier));
@@ -198,18 +204,19 @@ PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
   }
   KSP ksp;
   PetscCall(createMassSolver(X, &ksp));
-  if (_constrained) {
+  if (_constrained && project) {
     PetscCall(VecPointwiseMult(_w2, V, _supported));  // prescribed velocities stay
     PetscCall(VecWAXPY(A, -1.0, _w2, V));              // free velocities (A is scratch here)
     PetscCall(MatMult(_M, A, _w1));                    // M_ff v_f on the free rows
     PetscCall(_asm.zeroSupportedRows(_w1));
+    PetscCall(subtractPrescribedRate(X, _w2, _w1, A));
     PetscCall(KSPSolve(ksp, _w1, V));
     PetscCall(VecPointwiseMult(V, V, _notMultiplier));
     PetscCall(VecAXPY(V, 1.0, _w2));
   }
   PetscCall(VecSet(A, 0.0));
-  PetscCall(_asm.prescribedMotion(0.0, nullptr, nullptr, A));
-  PetscCall(_asm.residual(X, _damped ? V : nullptr, 0.0, _w1));
+  PetscCall(_asm.prescribedMotion(t, nullptr, nullptr, A));
+  PetscCall(_asm.residual(X, _damped ? V : nullptr, t, _w1));
   PetscCall(MatMultAdd(_M, A, _w1, _w1));
   PetscCall(_asm.zeroSupportedRows(_w1));
   PetscCall(VecScale(_w1, -1.0));
@@ -217,6 +224,8 @@ PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
     PetscCall(VecPointwiseMult(_w1, _w1, _notMultiplier));
     PetscCall(_asm.constraintVelocityTerm(X, V, _w2));
     PetscCall(VecAXPY(_w1, -1.0, _w2));
+    if (!_acc) PetscCall(VecDuplicate(_fext, &_acc));
+    PetscCall(subtractPrescribedRate(X, A, _w1, _acc));
   }
   PetscCall(KSPSolve(ksp, _w1, _w2));
   PetscCall(KSPDestroy(&ksp));
@@ -226,6 +235,60 @@ PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) {
     PetscCall(VecPointwiseMult(_w2, _w2, _notMultiplier));
   }
   PetscCall(VecAXPY(A, 1.0, _w2));
+  PetscFunctionReturn(0);
+}
+
+// rhs -= G w on the multiplier rows, for w the prescribed rates (zero on free and multiplier rows):
+// Assembler::constraintGradientProduct gives s G w there (and s G^T w_mu = 0 elsewhere).
+PetscErrorCode Dynamics::subtractPrescribedRate(Vec X, Vec w, Vec rhs, Vec scratch) {
+  PetscFunctionBeginUser;
+  PetscCall(_asm.constraintGradientProduct(X, w, scratch));
+  PetscCall(VecPointwiseMult(scratch, scratch, _multipliers));
+  PetscCall(VecAXPY(rhs, -1.0 / _asm.constraintScale(), scratch));
+  PetscFunctionReturn(0);
+}
+
+// Generalized-alpha's start with joints (index 3): perturbed starting values, after Arnold & Bruls,
+// Multibody Syst. Dyn. 18 (2007) 185, Sec. 4. On a smooth solution the scheme's variables are, to
+// O(h^2) (Taylor expansion of GeneralizedAlpha.hpp's recursions with Delta = alpha_m - alpha_f =
+// 1/2 - gamma):
+//   a_n = A(t_n + Delta h),   v_n = v(t_n) + h^2 (1/6 - beta - Delta/2) A'(t_n).
+// Without joints a start from a0 = A0, v0 = v(t0) leaves only an O(h) error in a, whose effect on q is
+// O(h^3) per step, while A comes from equilibrium. With joints the positions are held on the
+// constraint manifold, the mismatch has nowhere else to go, and A and lambda carry an O(h) transient
+// over the first ~100 steps at rho_inf = 0.9 (measured on a link carried by a driven hub,
+// tests/verification/test_multibody.cpp: drive torque 0.36 % off at h = 1 ms and first order;
+// with this start 1e-5 and second order). The jerk A' = (A(t0 + h) - A0) / h + O(h) comes from the
+// consistent acceleration at the state extrapolated to t0 + h (q0 + h v0 + h^2/2 A0, v0 + h A0; an
+// O(h^2) state error): one more factorization of the saddle-point matrix at the start. The velocity
+// offset enters the first step only (GeneralizedAlphaSetStartVelocityOffset): the state reported at
+// t0 is the consistent one.
+PetscErrorCode Dynamics::perturbedStart(Vec X, Vec V, Vec a) {
+  PetscFunctionBeginUser;
+  const PetscReal h = _desc.dt, delta = _params.alphaM - _params.alphaF;
+  PetscCall(VecCopy(_a0, a));
+  if (!_constrained) PetscFunctionReturn(0);
+  Vec Xh, Vh, jerk;
+  PetscCall(VecDuplicate(X, &Xh));
+  PetscCall(VecDuplicate(V, &Vh));
+  PetscCall(VecDuplicate(V, &jerk));
+  PetscCall(VecWAXPY(Vh, h, _a0, V));
+  PetscCall(VecWAXPY(Xh, 0.5 * h, _a0, V));
+  PetscCall(VecAYPX(Xh, h, X));  // X + h V + h^2/2 A0
+  PetscCall(VecPointwiseMult(Xh, Xh, _notMultiplier));
+  PetscCall(VecPointwiseMult(Vh, Vh, _notMultiplier));
+  PetscCall(_asm.prescribedMotion(h, Xh, Vh, nullptr));
+  PetscCall(consistentAcceleration(h, Xh, Vh, jerk, false));
+  PetscCall(VecAXPY(jerk, -1.0, _a0));
+  PetscCall(VecScale(jerk, 1.0 / h));
+  PetscCall(VecAXPY(a, delta * h, jerk));
+  PetscCall(VecPointwiseMult(jerk, jerk, _notMultiplier));
+  PetscCall(_asm.zeroSupportedRows(jerk));  // prescribed velocities stay exact (GeneralizedAlpha.hpp)
+  PetscCall(VecScale(jerk, h * h * (1.0 / 6.0 - _params.beta - 0.5 * delta)));
+  PetscCall(GeneralizedAlphaSetStartVelocityOffset(_ts, jerk));
+  PetscCall(VecDestroy(&Xh));
+  PetscCall(VecDestroy(&Vh));
+  PetscCall(VecDestroy(&jerk));
   PetscFunctionReturn(0);
 }
 
@@ -268,11 +331,30 @@ PetscErrorCode Dynamics::supportForce(Vec F) {
   PetscFunctionReturn(0);
 }
 
-// f_s = M a + f_int - f_ext on supported rows, with a from the state (StateSpace::acceleration).
+// f_s = M a + f_int - f_ext on supported rows, with a from the state (StateSpace::acceleration);
+// with joints f_int includes s G^T mu of the state's multipliers, and a is the v-half of the
+// derivative BDF solved for in the last step (StrandBdfGetDerivative: the pair (a, lambda) for
+// which the step's residual vanishes, as generalized-alpha's reaction uses its own a), or the
+// consistent start's before the first step.
 PetscErrorCode Dynamics::supportForceAt(PetscReal t, Vec X, Vec V, Vec F) {
   PetscFunctionBeginUser;
   if (!_acc) PetscCall(VecDuplicate(_fext, &_acc));
-  PetscCall(_space->acceleration(t, X, V, _acc));
+  if (_constrained) {
+    PetscBool known = PETSC_FALSE, bdf;
+    PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsStrandBdf, &bdf));
+    PetscCheck(bdf, _asm.dofs().comm(), PETSC_ERR_SUP, "support forces with joints need -dyn_ts_type %s or %s",
+               kTsStrandBdf, kTsGeneralizedAlpha);
+    if (!_ydot) PetscCall(VecDuplicate(_Y, &_ydot));
+    PetscCall(StrandBdfGetDerivative(_ts, _ydot, &known));
+    if (known) {  // copies: the monitor may hold a view of the state
+      PetscCall(_space->unpack(_ydot, _w2, _acc));
+      PetscCall(VecPointwiseMult(_acc, _acc, _notMultiplier));
+    } else {
+      PetscCall(VecCopy(_a0, _acc));
+    }
+  } else {
+    PetscCall(_space->acceleration(t, X, V, _acc));
+  }
   PetscCall(_asm.residual(X, _damped ? V : nullptr, t, F, assembly::SupportRows::Reaction));
   PetscCall(MatMultAdd(_M, _acc, F, F));
   PetscCall(VecPointwiseMult(F, F, _supported));
@@ -460,8 +542,6 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
   PetscFunctionBeginUser;
   PetscCheck(!(_explicit && _constrained), _asm.dofs().comm(), PETSC_ERR_SUP,
              "%s: joints (Lagrange multipliers) need an implicit integrator (generalized_alpha, bdf)", _schemeName.c_str());
-  PetscCheck(!(_firstOrder && _constrained && _moving), _asm.dofs().comm(), PETSC_ERR_SUP,
-             "%s: joints on a turning hub (prescribed motion) need integrator generalized_alpha", _schemeName.c_str());
   failure->clear();
   _onStep = &onStep;
   _stopped = false;
@@ -529,8 +609,15 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     PetscBool ours;
     PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
     if (ours) {
-      if (_resuming) PetscCall(GeneralizedAlphaSetState(_ts, _resume.A, _resume.a));
-      else PetscCall(GeneralizedAlphaSetAcceleration(_ts, _a0));
+      if (_resuming) {
+        PetscCall(GeneralizedAlphaSetState(_ts, _resume.A, _resume.a));
+      } else {
+        Vec a;
+        PetscCall(VecDuplicate(_a0, &a));
+        PetscCall(perturbedStart(X, V, a));
+        PetscCall(GeneralizedAlphaSetState(_ts, _a0, a));
+        PetscCall(VecDestroy(&a));
+      }
       PetscCall(GeneralizedAlphaSetPrescribedMotion(_ts, prescribe, this));
       if (_constrained) PetscCall(GeneralizedAlphaSetAlgebraic(_ts, _multipliers));
     }

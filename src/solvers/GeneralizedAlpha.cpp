@@ -17,6 +17,7 @@ struct AlphaData {
   Vec A = nullptr, a = nullptr;  // state at ts->ptime: acceleration and acceleration-like variable
   PrescribeFn prescribe = nullptr;
   void* prescribeCtx = nullptr;
+  Vec startOffset = nullptr;   // added to V0 in the next step only (perturbed starting values)
   Vec differential = nullptr;  // 0 on algebraic entries (multipliers), 1 elsewhere; null: none
   int predictor = 2;           // X1 = X0 (0), + h V0 (1), + h^2/2 A0 (2)
   RetryFn retry = nullptr;
@@ -35,7 +36,7 @@ PetscErrorCode checkType(TS ts) {
 }
 
 // Arnold & Bruls (2007) Eqs. 9-11: from X1, the acceleration-like a1, the velocity V1 and the
-// acceleration A1 at t_{n+1}:
+// acceleration A1 at t_{n+1} (V1, A1 exact on prescribed entries, GeneralizedAlpha.hpp):
 //   a1 = (X1 - X0 - h V0 - h^2 (1/2 - beta) a0) / (beta h^2),   V1 = V0 + h ((1 - gamma) a0 + gamma a1),
 //   (1 - alpha_m) a1 + alpha_m a0 = (1 - alpha_f) A1 + alpha_f A0.
 PetscErrorCode stageVectors(TS ts, Vec X1) {
@@ -50,6 +51,7 @@ PetscErrorCode stageVectors(TS ts, Vec X1) {
   PetscCall(VecCopy(d->a1, d->A1));
   PetscCall(VecAXPBY(d->A1, d->alphaM / (1.0 - d->alphaF), (1.0 - d->alphaM) / (1.0 - d->alphaF), d->a0));
   PetscCall(VecAXPY(d->A1, -d->alphaF / (1.0 - d->alphaF), d->A0));
+  if (d->prescribe) PetscCall(d->prescribe(d->stageTime, nullptr, d->V1, d->A1, d->prescribeCtx));  // exact rates
   PetscFunctionReturn(0);
 }
 
@@ -76,6 +78,10 @@ PetscErrorCode step(TS ts) {
              kTsGeneralizedAlpha);
   PetscCall(VecCopy(ts->vec_sol, d->X0));
   PetscCall(VecCopy(ts->vec_dot, d->V0));
+  if (d->startOffset) {
+    PetscCall(VecAXPY(d->V0, 1.0, d->startOffset));
+    PetscCall(VecDestroy(&d->startOffset));
+  }
   PetscCall(VecCopy(d->A, d->A0));
   PetscCall(VecCopy(d->a, d->a0));
   PetscInt rejections = 0;
@@ -90,7 +96,7 @@ PetscErrorCode step(TS ts) {
       PetscCall(VecCopy(d->X0, X1));  // predictor: constant acceleration (or velocity, or displacement)
       if (d->predictor >= 1) PetscCall(VecAXPY(X1, h, d->V0));
       if (d->predictor >= 2) PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
-      if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, d->prescribeCtx));
+      if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, nullptr, nullptr, d->prescribeCtx));
       PetscCall(TSPreStage(ts, d->stageTime));
       PetscCall(SNESSolve(ts->snes, nullptr, X1));
       PetscInt nits, lits;
@@ -164,7 +170,7 @@ PetscErrorCode setUp(TS ts) {
 PetscErrorCode reset(TS ts) {
   AlphaData* d = dataOf(ts);
   PetscFunctionBeginUser;
-  for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->a0, &d->V1, &d->A1, &d->a1, &d->A, &d->a, &d->differential})
+  for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->a0, &d->V1, &d->A1, &d->a1, &d->A, &d->a, &d->differential, &d->startOffset})
     PetscCall(VecDestroy(v));
   PetscFunctionReturn(0);
 }
@@ -293,6 +299,15 @@ PetscErrorCode GeneralizedAlphaSetState(TS ts, Vec A, Vec a) {
   PetscFunctionBeginUser;
   PetscCall(GeneralizedAlphaSetAcceleration(ts, A));
   PetscCall(VecCopy(a, dataOf(ts)->a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaSetStartVelocityOffset(TS ts, Vec dv) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  AlphaData* d = dataOf(ts);
+  if (!d->startOffset) PetscCall(VecDuplicate(dv, &d->startOffset));
+  PetscCall(VecCopy(dv, d->startOffset));
   PetscFunctionReturn(0);
 }
 

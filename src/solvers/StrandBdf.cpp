@@ -290,6 +290,19 @@ PetscErrorCode StrandBdfGetHistory(TS ts, BdfHistory* h) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode StrandBdfGetDerivative(TS ts, Vec ydot, PetscBool* known) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  BdfData* d = dataOf(ts);
+  // after an accepted step the history holds y_{n+1} first, then the k nodes its stage used
+  *known = d->steps > 0 && static_cast<PetscInt>(d->states.size()) > d->k ? PETSC_TRUE : PETSC_FALSE;
+  if (!*known) PetscFunctionReturn(0);
+  const std::vector<double> c = math::lagrangeDerivativeAtFirst({d->times.begin(), d->times.begin() + d->k + 1});
+  PetscCall(VecSet(ydot, 0.0));
+  PetscCall(VecMAXPY(ydot, d->k + 1, c.data(), d->states.data()));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode StrandBdfSetHistory(TS ts, const BdfHistory& h) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));

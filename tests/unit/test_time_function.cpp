@@ -125,3 +125,28 @@ TEST(HubMotion, PointOnTheHubMovesOnItsCircle) {
   EXPECT_NEAR(u3[1], 2.0 * std::cos(psi.f) - 2.0, 1e-14);
   EXPECT_NEAR(u3[2], 2.0 * std::sin(psi.f), 1e-14);
 }
+
+// The scene's geometry is the one at t = 0: a drive with psi(0) != 0 (a sine with a phase) turns it
+// by psi(t) - psi(0), so the supported point starts where it is drawn, with the drive's own rate.
+TEST(HubMotion, DriveWithAPhaseTurnsTheSceneFromWhereItIsDrawn) {
+  HubMotion h;
+  h.angle.kind = strand::model::TimeFunction::Kind::Sine;
+  h.angle.amplitude = 0.5;
+  h.angle.frequency = 0.5;
+  h.angle.phase = M_PI / 4.0;
+  h.blocks = {0};
+  h.slope = {0};
+  const double q0[2] = {2.0, 0.0};
+  double u[2], v[2], a[2];
+  h.state(0, q0, 2, 0.0, u, v, a);
+  const auto psi0 = h.angle.at(0.0);
+  EXPECT_EQ(u[0], 0.0);
+  EXPECT_EQ(u[1], 0.0);
+  EXPECT_NEAR(v[1], 2.0 * psi0.df, 1e-15);  // psi'(0) e_z x (2, 0)
+  EXPECT_NEAR(a[0], -2.0 * psi0.df * psi0.df, 1e-14);
+  EXPECT_NEAR(a[1], 2.0 * psi0.ddf, 1e-14);
+  const double t = 0.7, turned = h.angle.at(t).f - psi0.f;
+  h.state(0, q0, 2, t, u, v, a);
+  EXPECT_NEAR(u[0], 2.0 * std::cos(turned) - 2.0, 1e-15);
+  EXPECT_NEAR(u[1], 2.0 * std::sin(turned), 1e-15);
+}

@@ -3,6 +3,8 @@
 // the unit axis e through the center c, a position block follows r(t) = c + R(psi) (r0 - c) and a
 // slope block r'(t) = R(psi) r0'. With w = R(psi) w0 (w0 = r0 - c or r0'):
 //   dw/dt = psi' e x w,   d2w/dt2 = psi'' e x w + psi'^2 e x (e x w).
+// r0 is the scene's geometry, the one at t = 0: the rotation is by psi(t) - psi(0) (a drive such as
+// a sine with a phase may start at psi(0) != 0).
 #pragma once
 #include <vector>
 

@@ -124,7 +124,8 @@ public:
   const std::vector<double>& initialVelocities() const { return _v0; }
   // Supports on turning hubs (their DOFs are among fixedDofs; the others stay at zero displacement).
   const std::vector<HubMotion>& hubMotions() const { return _hubs; }
-  // Single prescribed coordinates (a driven rigid body's phi): u = function(t), among fixedDofs.
+  // Single prescribed coordinates (a driven rigid body's phi): u = function(t) - function(0), among
+  // fixedDofs (the scene's angle is the one at t = 0).
   struct PrescribedCoordinate {
     int dof;  // model numbering
     TimeFunction function;

@@ -138,9 +138,12 @@ private:
   static PetscErrorCode retryNewton(void* ctx, PetscBool* again);
   static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec X, void* ctx);
   static PetscErrorCode postStep(TS ts);
-  static PetscErrorCode prescribe(PetscReal t, Vec X, void* ctx);
+  static PetscErrorCode prescribe(PetscReal t, Vec X, Vec V, Vec A, void* ctx);
   PetscErrorCode applyScheme();
   PetscErrorCode initialAcceleration(Vec X, Vec V, Vec A);
+  PetscErrorCode consistentAcceleration(PetscReal t, Vec X, Vec V, Vec A, bool project);
+  PetscErrorCode perturbedStart(Vec X, Vec V, Vec a);  // generalized-alpha with joints: a0, v0
+  PetscErrorCode subtractPrescribedRate(Vec X, Vec w, Vec rhs, Vec scratch);
   PetscErrorCode createMassSolver(Vec X, KSP* ksp);
   PetscErrorCode currentAcceleration(Vec* A);
   PetscErrorCode powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support, PetscReal* load);
@@ -166,6 +169,7 @@ private:
   std::unique_ptr<StateSpace> _space;
   std::unique_ptr<ConstrainedStateSpace> _constrainedSpace;  // BDF with joints
   Vec _Y = nullptr, _acc = nullptr;       // first-order state (u, v); scratch acceleration
+  Vec _ydot = nullptr;                    // BDF with joints: the step's derivative (u', v')
   AlphaParams _params{0.0, 0.0, 0.5, 0.25};
   const StepCallback* _onStep = nullptr;
   DynamicsStep _last;

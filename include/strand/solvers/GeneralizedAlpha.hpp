@@ -25,7 +25,12 @@
 // the state. Also:
 //   - prescribed motion: a callback overwrites the prescribed entries of X1 at t_{n+1} after the
 //     predictor, so rheonomic supports hold exactly at the end of the step (the residual rows of
-//     those entries must be zero, the Jacobian rows unit);
+//     those entries must be zero, the Jacobian rows unit), and those of V1 and A1 at every stage:
+//     left to the recursions above, V and A of a prescribed coordinate would carry an O(h)
+//     transient (a1 - A(t1 + (alpha_m - alpha_f) h) = O(h psi''') from Newmark's formula fitted to
+//     exact positions), damped only like rho_inf^n, into the mass-coupled loads of the free rows and
+//     into the support force (measured: the drive torque of a hub started by a sine, 0.6 % off at
+//     h = 1 ms and first order; tests/verification/test_multibody.cpp);
 //   - predictor X1 = X0 + h V0 + h^2/2 A0 (constant acceleration) instead of X1 = X0
 //     (-ts_strand_alpha_predictor displacement | velocity | acceleration; displacement is the
 //     robust start for fine, stiff meshes under suddenly applied loads, docs/performance.md).
@@ -61,11 +66,15 @@ PetscErrorCode GeneralizedAlphaGetAcceleration(TS ts, Vec* A);
 // scheme's state at the current TS time (X, V are the TS solution).
 PetscErrorCode GeneralizedAlphaGetState(TS ts, Vec* A, Vec* a);
 PetscErrorCode GeneralizedAlphaSetState(TS ts, Vec A, Vec a);
+// A velocity offset added to the scheme's v at the start of the next step only (perturbed starting
+// values, Dynamics::perturbedStart): the state at the current time stays as given (copied).
+PetscErrorCode GeneralizedAlphaSetStartVelocityOffset(TS ts, Vec dv);
 // Algebraic unknowns (mask 1: Lagrange multipliers of an index-3 system): their velocity and
 // accelerations are held at zero, so the predictor keeps their last value (copied).
 PetscErrorCode GeneralizedAlphaSetAlgebraic(TS ts, Vec mask);
-// prescribe(t, X, ctx) sets the prescribed entries of X to their values at time t.
-using PrescribeFn = PetscErrorCode (*)(PetscReal t, Vec X, void* ctx);
+// prescribe(t, X, V, A, ctx) sets the prescribed entries of the non-null ones among X, V, A to
+// their values at time t.
+using PrescribeFn = PetscErrorCode (*)(PetscReal t, Vec X, Vec V, Vec A, void* ctx);
 PetscErrorCode GeneralizedAlphaSetPrescribedMotion(TS ts, PrescribeFn prescribe, void* ctx);
 // After a failed Newton solve, retry(ctx, &again) is told (e.g. to build a fresh Newton matrix,
 // NewtonMatrixReuse) and may ask for one more attempt of the same step from X1 = X0 before the

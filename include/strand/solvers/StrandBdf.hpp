@@ -41,5 +41,9 @@ struct BdfHistory {
 PetscErrorCode StrandBdfGetHistory(TS ts, BdfHistory* h);
 // A history to continue from (copied; the next step uses it instead of starting).
 PetscErrorCode StrandBdfSetHistory(TS ts, const BdfHistory& h);
+// y' at the current TS time as the last accepted step solved for it: the derivative of the
+// Lagrange polynomial through that step's k + 1 nodes (StrandBdf.hpp's formula), so that
+// F(t, y, y') = 0 holds to the Newton tolerance. *known is false before the first step.
+PetscErrorCode StrandBdfGetDerivative(TS ts, Vec ydot, PetscBool* known);
 
 }  // namespace strand::solvers
