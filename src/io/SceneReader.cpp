@@ -982,7 +982,7 @@ private:
                         "torque", "fixed", "rotation"});
       else
         item.expectMap({"name", "mass", "inertia", "position", "angle", "axis", "velocity", "angular_velocity",
-                        "force", "torque", "fixed"});
+                        "force", "torque", "fixed", "rotation", "rotation_axis"});
       model::RigidBodyDesc r;
       r.mark = item.mark();
       r.name = item.child("name").text();
@@ -1021,12 +1021,22 @@ private:
       }
       if (const Field rot = item.child("rotation"); rot.present()) {
         if (scene_.analysis != model::Analysis::Dynamic) rot.fail("a driven rotation needs analysis: dynamic");
-        if (std::find(r.fixed.begin(), r.fixed.end(), 2) != r.fixed.end())
+        if (D == 2 && std::find(r.fixed.begin(), r.fixed.end(), 2) != r.fixed.end())
           rot.fail("phi is listed in 'fixed'; a driven body's phi follows 'rotation' instead");
         if (item.child("angular_velocity").present())
           rot.fail("the initial angular velocity of a driven body is the rotation's rate; remove 'angular_velocity'");
+        if (item.child("torque").present())
+          rot.fail("a driven body's rotation is prescribed, so a 'torque' on it would do nothing; remove one of them");
         r.driven = true;
         r.rotation = readTimeFunction(rot);
+      }
+      if (const Field ax = item.child("rotation_axis"); ax.present()) {
+        if (!r.driven) ax.fail("'rotation_axis' is the axis of a driven rotation; give 'rotation' too");
+        r.rotationAxis = readVector(ax, 3);
+        const double n = std::sqrt(r.rotationAxis[0] * r.rotationAxis[0] + r.rotationAxis[1] * r.rotationAxis[1] +
+                                   r.rotationAxis[2] * r.rotationAxis[2]);
+        if (n == 0.0) ax.fail("the rotation axis must not be zero");
+        for (double& c : r.rotationAxis) c /= n;
       }
       scene_.rigidBodies.push_back(std::move(r));
     }

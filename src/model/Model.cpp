@@ -171,6 +171,8 @@ Model::Model(const SceneDescription& scene)
     _joints.push_back(std::move(j));
   }
   for (size_t r = 0; r < _rigid.size() && _dim == 3; ++r) {
+    // a driven frame is prescribed (a turning hub of its three axes, below): no equations
+    if (scene.rigidBodies[r].driven) continue;
     // a_k . a_k = 1 as |a_k| - 1 = 0 (Distance to the origin), a_k . a_l = 0 (Orthogonal)
     Joint j;
     j.label = scene.rigidBodies[r].mark.where() + " (orthonormal body frame)";
@@ -234,8 +236,13 @@ Model::Model(const SceneDescription& scene)
   _fixed.assign(numDofs(), 0);
   _multiplier.assign(numDofs(), 0);
   for (size_t r = 0; r < _rigid.size(); ++r) {
-    if (_dim == 3) {  // x, y, z of the centre of mass (the frame is free)
+    if (_dim == 3) {  // x, y, z of the centre of mass; the frame is free or driven
       for (int c : scene.rigidBodies[r].fixed) _fixed[_rigid[r].posBlock * 3 + c] = 1;
+      if (scene.rigidBodies[r].driven) {  // a_k(t) = R(rotation(t) - rotation(0)) a_k(0): three "slope" blocks
+        const int a = _rigid[r].rotBlock;
+        for (int i = 0; i < 9; ++i) _fixed[a * 3 + i] = 1;
+        _hubs.push_back({{}, scene.rigidBodies[r].rotationAxis, scene.rigidBodies[r].rotation, {a, a + 1, a + 2}, {1, 1, 1}});
+      }
       continue;
     }
     _fixed[_rigid[r].rotBlock * 2 + 1] = 1;  // the unused coordinate of the rotation block

@@ -877,6 +877,21 @@ TEST(SceneReader, RigidBodiesAndJoints) {
                         "phi is listed in 'fixed'"));
   EXPECT_TRUE(failsWith(edit(driven, "analysis: dynamic", "analysis: static"), 3, "rigid_bodies[0].rotation",
                         "a driven rotation needs analysis: dynamic"));
+  EXPECT_TRUE(failsWith(edit(driven, "fixed: [x, y]", "fixed: [x, y], torque: 2"), 3, "rigid_bodies[0].rotation",
+                        "a 'torque' on it would do nothing"));
+  // 3D: driven about rotation_axis (normalized); the axis needs a rotation
+  const std::string driven3d =
+      "analysis: dynamic\ndimension: 3\nrigid_bodies: [{name: hub, mass: 1, inertia: [1, 2, 2], position: [0, 0, 0], "
+      "fixed: [x, y, z], rotation: {function: linear, rate: 2}, rotation_axis: [0, 3, 4]}]\ndynamics: {dt: 1e-3, t_end: 1}\n";
+  const model::SceneDescription d3 = parseScene(driven3d, "driven3d.yaml");
+  ASSERT_EQ(d3.rigidBodies.size(), 1u);
+  EXPECT_TRUE(d3.rigidBodies[0].driven);
+  EXPECT_NEAR(d3.rigidBodies[0].rotationAxis[1], 0.6, 1e-15);
+  EXPECT_NEAR(d3.rigidBodies[0].rotationAxis[2], 0.8, 1e-15);
+  EXPECT_TRUE(failsWith(edit(driven3d, "rotation: {function: linear, rate: 2}, ", ""), 3,
+                        "rigid_bodies[0].rotation_axis", "give 'rotation' too"));
+  EXPECT_TRUE(failsWith(edit(driven3d, "[0, 3, 4]", "[0, 0, 0]"), 3, "rigid_bodies[0].rotation_axis",
+                        "must not be zero"));
   // the explicit integrators take no joints (no multipliers); the message says what to use; bdf
   // takes them on the GGL form or (constraint_form: index3) the plain index-3 form
   const std::string pinned =
@@ -895,7 +910,8 @@ TEST(SceneReader, RigidBodiesAndJoints) {
 }
 
 // 3D rigid bodies: principal inertia [I1, I2, I3] (a real mass distribution), orientation by angle
-// about axis, vectors in 3D; explicit integrators refuse them (their frame is held by multipliers).
+// about axis, vectors in 3D; explicit integrators refuse them (their frame is held by multipliers);
+// a driven one takes no initial angular velocity.
 TEST(SceneReader, ThreeDimensionalRigidBodies) {
   const std::string base =
       "analysis: dynamic\ndimension: 3\n"
@@ -915,8 +931,9 @@ TEST(SceneReader, ThreeDimensionalRigidBodies) {
   EXPECT_TRUE(failsWith(edit(base, "axis: [1, 0, 0]", "axis: [0, 0, 0]"), 4, "rigid_bodies[0].axis", "must not be zero"));
   EXPECT_TRUE(failsWith(edit(base, "fixed: [x, y, z]", "fixed: [x, phi]"), 4, "rigid_bodies[0].fixed[1]",
                         "allowed: x, y, z"));
-  EXPECT_TRUE(failsWith(edit(base, "fixed: [x, y, z]", "rotation: {kind: ramp}"), 4, "rigid_bodies[0].rotation",
-                        "unknown key"));
+  // a 3D body may be driven (rotation, rotation_axis), but then its rate is the rotation's
+  EXPECT_TRUE(failsWith(edit(base, "fixed: [x, y, z]", "rotation: {function: linear, rate: 1}"), 4,
+                        "rigid_bodies[0].rotation", "the initial angular velocity of a driven body is the rotation's rate"));
   EXPECT_TRUE(failsWith(edit(base, "integrator: bdf", "integrator: rk4"), 5, "dynamics.integrator",
                         "a 3D rigid body's frame is held by six"));
 }

@@ -112,8 +112,11 @@ struct RigidBodyDesc {
   Vec3 force{};                           // constant applied force at the centre of mass [N]
   Vec3 torque{};                          // constant applied torque [N m], world frame (2D: the z entry)
   std::vector<int> fixed;                 // held coordinates: 0 x, 1 y, 2 phi (2D) or z (3D)
-  bool driven = false;                    // 2D: phi prescribed, angle + rotation(t) (a driven hub)
+  // driven: the orientation is prescribed, turned by rotation(t) - rotation(0) from the initial one
+  // (2D: phi = angle + that; 3D: about rotation_axis, a world direction); a driven hub
+  bool driven = false;
   TimeFunction rotation;                  // dynamics only; e.g. spin_up (seed 001 Eq. 57)
+  Vec3 rotationAxis{0.0, 0.0, 1.0};       // 3D: unit axis of the driven rotation
   SourceMark mark;
 };
 
