@@ -193,9 +193,7 @@ PetscErrorCode Dynamics::createMassSolver(Vec X, KSP* ksp) {
 // Newton then starts at the solution of t0. The matrix holds only the free columns of G; G_s v_p and
 // G_s a_p are the joints' rates due to a driven body's prescribed velocity and acceleration (a hub
 // that starts turning, or accelerating, at t0). One factorization serves both solves.
-// consistentAcceleration(t, ..., project = false) solves for a and lambda at (t, X, V) as given.
-PetscErrorCode Dynamics::initialAcceleration(Vec X, Vec V, Vec A) { return consistentAcceleration(0.0, X, V, A, true); }
-
+// With project = false it solves for a and lambda at (t, X, V) as given (perturbedStart).
 PetscErrorCode Dynamics::consistentAcceleration(PetscReal t, Vec X, Vec V, Vec A, bool project) {
   PetscFunctionBeginUser;
   if (_constrained) {
@@ -576,7 +574,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
       // system, mu~0 = 0.
       const bool ggl = _desc.constraintForm == model::DynamicsDesc::ConstraintForm::Ggl;
       _asm.setConstraintScale(ggl ? 1.0 / (_desc.dt * _desc.dt) : 1.0);
-      if (!_resuming) PetscCall(initialAcceleration(X, V, _a0));
+      if (!_resuming) PetscCall(consistentAcceleration(0.0, X, V, _a0, true));
     }
     PetscCall(_space->pack(X, V, _Y));
     PetscCall(TSSetSolution(_ts, _Y));
@@ -604,7 +602,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     if (_constrained)
       _asm.setConstraintScale((1.0 - _params.alphaM) / ((1.0 - _params.alphaF) * _params.beta * _desc.dt * _desc.dt));
     if (_resuming) PetscCall(VecCopy(_resume.A, _a0));
-    else PetscCall(initialAcceleration(X, V, _a0));
+    else PetscCall(consistentAcceleration(0.0, X, V, _a0, true));
     PetscCall(TS2SetSolution(_ts, X, V));
     PetscBool ours;
     PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
@@ -618,7 +616,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
         PetscCall(GeneralizedAlphaSetState(_ts, _a0, a));
         PetscCall(VecDestroy(&a));
       }
-      PetscCall(GeneralizedAlphaSetPrescribedMotion(_ts, prescribe, this));
+      if (_moving) PetscCall(GeneralizedAlphaSetPrescribedMotion(_ts, prescribe, this));
       if (_constrained) PetscCall(GeneralizedAlphaSetAlgebraic(_ts, _multipliers));
     }
     PetscCall(TSSolve(_ts, X));

@@ -25,10 +25,8 @@ using namespace strand::testing;
 namespace {
 
 model::DynamicsDesc schemeOf(model::Integrator integrator, double dt, double tEnd) {
-  model::DynamicsDesc d;
+  model::DynamicsDesc d;  // rho_inf 0.9, BDF order 2: the defaults
   d.integrator = integrator;
-  d.rhoInf = 0.9;
-  d.bdfOrder = 2;
   d.dt = dt;
   d.tEnd = tEnd;
   return d;

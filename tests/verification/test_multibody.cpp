@@ -17,7 +17,7 @@
 
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/Schemes.hpp"
-#include "support/CarriedLink.hpp"
+#include "support/ExactMotionChecks.hpp"
 #include "support/Scenes.hpp"
 
 using namespace strand;
@@ -332,27 +332,5 @@ TEST(Multibody, IndexThreeBdfWithMultipliersInTheErrorNormStopsWithAnExplanation
 // first order, 3.6e-3 of its peak at h = 1 ms (Arnold & Bruls 2007's O(h) transient of A and
 // lambda); with it 9.6e-6.
 TEST(Multibody, LinkCarriedByADrivenHubMatchesNewtonsLawsFromAConsistentStart) {
-  const double tEnd = 2.0;  // one period of the drive
-  for (model::Integrator integrator : {model::Integrator::GeneralizedAlpha, model::Integrator::Bdf}) {
-    CarriedLink r[2];
-    for (int k = 0; k < 2; ++k) {
-      const model::DynamicsDesc d = scheme(integrator, 0.9, 2e-3 / (1 << k), tEnd);
-      r[k] = carryLink(d);
-      ASSERT_EQ(r[k].failure, "");
-      std::printf("%-17s h %.0e: start |G v| %.1e, torque %.1e, force %.1e; max |x - R p| %.1e m, torque error %.2e, "
-                  "force error %.2e, energy balance %.2e\n",
-                  solvers::schemeName(d).c_str(), d.dt, r[k].startVelocity, r[k].startTorque, r[k].startForce,
-                  r[k].position, r[k].torque, r[k].force, r[k].energy);
-      EXPECT_LT(r[k].startVelocity, 1e-12);
-      EXPECT_LT(r[k].startTorque, 1e-12);
-      EXPECT_LT(r[k].startForce, 1e-12);
-      EXPECT_LT(r[k].position, 1e-9);
-    }
-    const double torqueRate = std::log2(r[0].torque / r[1].torque), forceRate = std::log2(r[0].force / r[1].force),
-                 energyRate = std::log2(r[0].energy / r[1].energy);
-    std::printf("rates: torque %.3f, force %.3f, energy %.3f\n", torqueRate, forceRate, energyRate);
-    EXPECT_NEAR(torqueRate, 2.0, 0.2);
-    EXPECT_NEAR(forceRate, 2.0, 0.2);
-    EXPECT_NEAR(energyRate, 2.0, 0.2);
-  }
+  expectSecondOrderAgainstExactMotion("link on a driven hub", 2.0, carryLink);  // one period of the drive
 }

@@ -21,6 +21,7 @@
 
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/Schemes.hpp"
+#include "support/ExactMotionChecks.hpp"
 #include "support/Scenes.hpp"
 
 using namespace strand;
@@ -350,81 +351,41 @@ struct DrivenHub3d {
   }
 };
 
-struct DrivenRun {
-  double position = 0.0, force = 0.0, torque = 0.0, energy = 0.0;  // largest errors (m; relative)
-  double startForce = 0.0, startTorque = 0.0, startVelocity = 0.0;
-  std::string failure;
-};
-
-DrivenRun runDrivenHub(const DrivenHub3d& c, const model::DynamicsDesc& d) {
-  MPI_Comm comm = PETSC_COMM_WORLD;
-  model::SceneDescription sc = c.scene();
-  sc.dynamics = d;
-  solvers::Problem p(comm, sc);
-  const model::RigidBody &h = p.model().rigidBodies()[0], &l = p.model().rigidBodies()[1];
+// The largest errors of a run against the exact motion (tests/support/CarriedLink.hpp).
+CarriedLink runDrivenHub(const DrivenHub3d& c, const model::DynamicsDesc& d) {
   const double peak = c.kAmplitude * c.kOmega * c.kOmega;  // |psi''| max (and |psi'|^2 max)
   const double peakTorque = c.axialInertia() * peak;
   const double radius = std::sqrt(c.p[0] * c.p[0] + c.p[1] * c.p[1] + c.p[2] * c.p[2]);
   // scales: |x''| <= |p| (|psi''| + psi'^2) <= 2 |p| a w^2 (a <= 1); T <= J_e (a w)^2 / 2
   const double peakForce = c.kLinkMass * radius * 2.0 * peak;
   const double peakKinetic = 0.5 * c.axialInertia() * std::pow(c.kAmplitude * c.kOmega, 2);
-  Vec X, V, F;
-  PetscCallAbort(comm, p.createInitialState(&X, &V));
-  PetscCallAbort(comm, VecDuplicate(X, &F));
-  solvers::Dynamics dyn(p.assembler(), d);
-  DrivenRun out;
-  double e0 = 0.0;
   const double psi0 = c.psi(0.0).f;
-  solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec Xs, Vec) -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    if (st.step == 0) {
-      e0 = st.energy();
-      out.startVelocity = st.constraintVelocity;
+  auto exact = [&](const model::Model& m, double t, const std::vector<double>& q, const std::vector<double>& f) {
+    const model::RigidBody &h = m.rigidBodies()[0], &l = m.rigidBodies()[1];
+    const model::TimeValue s = c.psi(t);
+    const model::Vec3 x = turn(rotation(c.e, s.f - psi0), c.p);
+    // x'' = psi'' e x x + psi'^2 e x (e x x)
+    const model::Vec3 ex{c.e[1] * x[2] - c.e[2] * x[1], c.e[2] * x[0] - c.e[0] * x[2], c.e[0] * x[1] - c.e[1] * x[0]};
+    const model::Vec3 eex{c.e[1] * ex[2] - c.e[2] * ex[1], c.e[2] * ex[0] - c.e[0] * ex[2], c.e[0] * ex[1] - c.e[1] * ex[0]};
+    double dx = 0.0, df = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      dx += std::pow(q[l.posBlock * 3 + i] - x[i], 2);
+      df += std::pow(f[h.posBlock * 3 + i] - c.kLinkMass * (s.ddf * ex[i] + s.df * s.df * eex[i]), 2);
     }
-    out.energy = std::max(out.energy, std::fabs(st.energy() - e0) / peakKinetic);
-    std::vector<double> q, f;
-    PetscCall(p.assembler().gatherToRoot(Xs, q));
-    PetscCall(dyn.supportForce(F));
-    PetscCall(p.assembler().toModelOrder(F, f));
-    double err[3] = {0.0, 0.0, 0.0};
-    if (!q.empty()) {
-      const model::TimeValue s = c.psi(st.time);
-      const Mat3 R = rotation(c.e, s.f - psi0);
-      const model::Vec3 x = turn(R, c.p);
-      // x'' = psi'' e x x + psi'^2 e x (e x x)
-      const model::Vec3 ex{c.e[1] * x[2] - c.e[2] * x[1], c.e[2] * x[0] - c.e[0] * x[2], c.e[0] * x[1] - c.e[1] * x[0]};
-      const model::Vec3 eex{c.e[1] * ex[2] - c.e[2] * ex[1], c.e[2] * ex[0] - c.e[0] * ex[2], c.e[0] * ex[1] - c.e[1] * ex[0]};
-      double dx = 0.0, df = 0.0;
-      for (int i = 0; i < 3; ++i) {
-        dx += std::pow(q[l.posBlock * 3 + i] - x[i], 2);
-        df += std::pow(f[h.posBlock * 3 + i] - c.kLinkMass * (s.ddf * ex[i] + s.df * s.df * eex[i]), 2);
-      }
-      double tau = 0.0;  // e . sum_k a_k x f_k
-      for (int k = 0; k < 3; ++k) {
-        const double* a = &q[(h.rotBlock + k) * 3];
-        const double* fk = &f[(h.rotBlock + k) * 3];
-        const double axf[3] = {a[1] * fk[2] - a[2] * fk[1], a[2] * fk[0] - a[0] * fk[2], a[0] * fk[1] - a[1] * fk[0]};
-        for (int i = 0; i < 3; ++i) tau += c.e[i] * axf[i];
-      }
-      err[0] = std::sqrt(dx);
-      err[1] = std::sqrt(df) / peakForce;
-      err[2] = std::fabs(tau - c.axialInertia() * s.ddf) / peakTorque;
+    double tau = 0.0;  // e . sum_k a_k x f_k
+    for (int k = 0; k < 3; ++k) {
+      const double* a = &q[(h.rotBlock + k) * 3];
+      const double* fk = &f[(h.rotBlock + k) * 3];
+      const double axf[3] = {a[1] * fk[2] - a[2] * fk[1], a[2] * fk[0] - a[0] * fk[2], a[0] * fk[1] - a[1] * fk[0]};
+      for (int i = 0; i < 3; ++i) tau += c.e[i] * axf[i];
     }
-    MPI_Bcast(err, 3, MPI_DOUBLE, 0, comm);
-    if (st.step == 0) {
-      out.startForce = err[1];
-      out.startTorque = err[2];
-    }
-    out.position = std::max(out.position, err[0]);
-    out.force = std::max(out.force, err[1]);
-    out.torque = std::max(out.torque, err[2]);
-    PetscFunctionReturn(0);
+    MotionErrors e;
+    e.position = std::sqrt(dx);
+    e.force = std::sqrt(df) / peakForce;
+    e.torque = std::fabs(tau - c.axialInertia() * s.ddf) / peakTorque;
+    return e;
   };
-  PetscCallAbort(comm, dyn.run(X, V, cb, &out.failure));
-  VecDestroy(&X);
-  VecDestroy(&V);
-  VecDestroy(&F);
-  return out;
+  return runAgainstExactMotion(c.scene(), d, peakKinetic, exact);
 }
 
 }  // namespace
@@ -435,26 +396,5 @@ DrivenRun runDrivenHub(const DrivenHub3d& c, const model::DynamicsDesc& d) {
 // the axis at second order on generalized-alpha (rho_inf 0.9) and BDF2-GGL, exact at t = 0.
 TEST(RigidBody3d, DrivenHubCarriesALinkAsNewtonAndEulerSay) {
   const DrivenHub3d c;
-  for (model::Integrator integrator : {model::Integrator::GeneralizedAlpha, model::Integrator::Bdf}) {
-    DrivenRun r[2];
-    for (int k = 0; k < 2; ++k) {
-      const model::DynamicsDesc d = scheme(integrator, 0.9, 2e-3 / (1 << k), 2.0);
-      r[k] = runDrivenHub(c, d);
-      ASSERT_EQ(r[k].failure, "");
-      std::printf("3D driven hub, %-17s h %.0e: start |G v| %.1e force %.1e torque %.1e; max |x - R p| %.1e m, "
-                  "force error %.2e, torque error %.2e, energy balance %.2e\n",
-                  solvers::schemeName(d).c_str(), d.dt, r[k].startVelocity, r[k].startForce, r[k].startTorque,
-                  r[k].position, r[k].force, r[k].torque, r[k].energy);
-      EXPECT_LT(r[k].startVelocity, 1e-12);
-      EXPECT_LT(r[k].startForce, 1e-12);
-      EXPECT_LT(r[k].startTorque, 1e-12);
-      EXPECT_LT(r[k].position, 1e-9);
-    }
-    const double forceRate = std::log2(r[0].force / r[1].force), torqueRate = std::log2(r[0].torque / r[1].torque),
-                 energyRate = std::log2(r[0].energy / r[1].energy);
-    std::printf("3D driven hub rates: force %.3f, torque %.3f, energy %.3f\n", forceRate, torqueRate, energyRate);
-    EXPECT_NEAR(forceRate, 2.0, 0.2);
-    EXPECT_NEAR(torqueRate, 2.0, 0.2);
-    EXPECT_NEAR(energyRate, 2.0, 0.2);
-  }
+  expectSecondOrderAgainstExactMotion("3D driven hub", 2.0, [&](const model::DynamicsDesc& d) { return runDrivenHub(c, d); });
 }

@@ -140,7 +140,6 @@ private:
   static PetscErrorCode postStep(TS ts);
   static PetscErrorCode prescribe(PetscReal t, Vec X, Vec V, Vec A, void* ctx);
   PetscErrorCode applyScheme();
-  PetscErrorCode initialAcceleration(Vec X, Vec V, Vec A);
   PetscErrorCode consistentAcceleration(PetscReal t, Vec X, Vec V, Vec A, bool project);
   PetscErrorCode perturbedStart(Vec X, Vec V, Vec a);  // generalized-alpha with joints: a0, v0
   PetscErrorCode subtractPrescribedRate(Vec X, Vec w, Vec rhs, Vec scratch);
