@@ -48,6 +48,18 @@ struct CarriedLink {
   std::string failure;
 };
 
+// A pin (2D) or spherical joint (3D) from the centre of rigid body "link" to the point p of "hub".
+inline void pinLinkCentreToHub(model::SceneDescription& sc, const model::Vec3& p) {
+  model::JointDesc pin;
+  pin.type = model::JointType::Pin;
+  pin.a.kind = model::JointEndDesc::Kind::RigidPoint;
+  pin.a.body = "link";
+  pin.b.kind = model::JointEndDesc::Kind::RigidPoint;
+  pin.b.body = "hub";
+  pin.b.point = p;
+  sc.joints.push_back(pin);
+}
+
 // Errors of one state against the exact motion: the link's centre [m], and the drive torque and the
 // ground force on the hub relative to their peaks.
 struct MotionErrors {
@@ -130,14 +142,7 @@ inline CarriedLink carryLink(const model::DynamicsDesc& d) {
   link.inertia = 0.7;
   link.position = {kPin[0], kPin[1], 0.0};
   sc.rigidBodies.push_back(link);
-  model::JointDesc pin;
-  pin.type = model::JointType::Pin;
-  pin.a.kind = model::JointEndDesc::Kind::RigidPoint;
-  pin.a.body = "link";
-  pin.b.kind = model::JointEndDesc::Kind::RigidPoint;
-  pin.b.body = "hub";
-  pin.b.point = {kPin[0], kPin[1], 0.0};
-  sc.joints.push_back(pin);
+  pinLinkCentreToHub(sc, {kPin[0], kPin[1], 0.0});
   const double p2 = kPin[0] * kPin[0] + kPin[1] * kPin[1], inertia = kHubInertia + kLinkMass * p2;
   const double peakTorque = inertia * kDriveAmplitude * kDriveOmega * kDriveOmega;
   const double peakForce = kLinkMass * std::sqrt(p2) * kDriveAmplitude * kDriveOmega * kDriveOmega;

@@ -339,14 +339,7 @@ struct DrivenHub3d {
     link.principalInertia = {0.5, 0.6, 0.7};
     link.position = p;
     sc.rigidBodies.push_back(link);
-    model::JointDesc pin;
-    pin.type = model::JointType::Pin;
-    pin.a.kind = model::JointEndDesc::Kind::RigidPoint;
-    pin.a.body = "link";
-    pin.b.kind = model::JointEndDesc::Kind::RigidPoint;
-    pin.b.body = "hub";
-    pin.b.point = p;
-    sc.joints.push_back(pin);
+    pinLinkCentreToHub(sc, p);
     return sc;
   }
 };
