@@ -52,9 +52,7 @@ public:
       geo.length = b.elementLength;
       geo.slopeScale[0] = b.slopeScale[0];
       geo.slopeScale[1] = b.slopeScale[1];
-      std::vector<typename E::Slots> sl;
-      for (int g = 0; g < _tab.size(); ++g) sl.push_back(E::slots(geo, _tab.at[g]));
-      _slots.push_back(std::move(sl));
+      _points.push_back(E::pointTable(geo, _tab));
     }
     // slot mass of one element, per body, and the rotation axis operators
     for (const model::Body& b : m.bodies()) {
@@ -112,8 +110,8 @@ public:
     geo.slopeScale[0] = b.slopeScale[e];
     geo.slopeScale[1] = b.slopeScale[e + 1];
     if (!b.kappa0.empty()) geo.kappa0 = &b.kappa0[e * _tab.size()];
-    geo.atGauss = _slots[&b - _model.bodies().data()].data();
-    geo.atGaussOf = &_tab;
+    geo.points = &_points[&b - _model.bodies().data()];
+    geo.pointsOf = &_tab;
     return geo;
   }
 
@@ -340,7 +338,7 @@ private:
   const std::vector<double>* _q0;  // reference coordinates, ghosted-local numbering
   elements::CableShapeTable _tab, _massTab;
   std::vector<std::array<double, N>> _bodyLoad;
-  std::vector<std::vector<typename E::Slots>> _slots;  // per body, at the Gauss points of _tab
+  std::vector<elements::CablePointTable> _points;  // per body, at the Gauss points of _tab
   std::vector<std::array<double, 16>> _slotMass;       // per body: m_ab of one element (no point masses)
   double _identity[D * D];
   double _projector[D * D], _skew[D * D];              // P = I - e e^T and [e]x of the rotation axis e

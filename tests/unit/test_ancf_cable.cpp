@@ -22,16 +22,17 @@ struct Fixture {
   static constexpr int N = E::kDof;
   CableSection sec;
   typename E::Geometry geo;
-  CableShapeTable tab{5};
+  CableShapeTable tab;
   double q0[N], u[N], v[N];  // reference (straight) coordinates, displacement, velocity
   std::mt19937 rng{42};
 
-  explicit Fixture(bool damped) {
+  // bendingRate: with damped, also the curvature-rate damping (else the axial one alone)
+  explicit Fixture(bool damped, int gaussPoints = 5, bool bendingRate = true) : tab(gaussPoints) {
     sec.EA = 3.0e4;
     sec.EI = 7.0;
     sec.rhoA = 2.0;
     sec.dampAxial = damped ? 0.03 : 0.0;
-    sec.dampBending = damped ? 0.05 : 0.0;
+    sec.dampBending = damped && bendingRate ? 0.05 : 0.0;
     geo.length = 0.7;
     geo.slopeScale[0] = 0.7;
     geo.slopeScale[1] = 0.5;
@@ -90,6 +91,54 @@ TYPED_TEST(AncfCableTest, StiffnessAndDampingTangentsEqualDualNumberDerivatives)
     const double scaleD = std::max(maxAbs(Dad, N * N), 1e-300);
     for (int k = 0; k < N * N; ++k) EXPECT_NEAR(damped ? Dm[k] : 0.0, Dad[k], 1e-12 * scaleD) << "D entry " << k;
   }
+}
+
+// The kernels evaluate the Gauss points of an element as one padded array (CablePointTable.hpp;
+// 2..8 points are padded to 2, 4, 6, 8), and the 3D tangent without curvature-rate damping has its
+// own closed form (pointTangents3d). Every point count, undamped / axial damping alone / both, with
+// and without the precomputed table: tangents equal the dual-number derivatives of the force, and
+// the table changes no bit.
+TYPED_TEST(AncfCableTest, EveryGaussCountAndDampingGivesExactTangents) {
+  constexpr int D = TypeParam::value;
+  using E = AncfCable<D>;
+  constexpr int N = Fixture<D>::N;
+  for (int gauss = 2; gauss <= 8; ++gauss)
+    for (int mode = 0; mode < 3; ++mode) {
+      Fixture<D> fx(mode > 0, gauss, mode == 2);
+      double K[N * N], Dm[N * N], f[N], Kad[N * N], Dad[N * N];
+      E::tangent(fx.sec, fx.geo, fx.tab, fx.q0, fx.u, fx.v, f, K, Dm);
+      fx.template dualForce<N>(true, Kad);
+      fx.template dualForce<N>(false, Dad);
+      const double scaleK = maxAbs(Kad, N * N), scaleD = std::max(maxAbs(Dad, N * N), 1e-300);
+      for (int k = 0; k < N * N; ++k) {
+        EXPECT_NEAR(K[k], Kad[k], 1e-12 * scaleK) << gauss << " points, mode " << mode << ", K entry " << k;
+        EXPECT_NEAR(Dm[k], Dad[k], 1e-12 * scaleD) << gauss << " points, mode " << mode << ", D entry " << k;
+      }
+      const CablePointTable table = E::pointTable(fx.geo, fx.tab);
+      EXPECT_EQ(table.padded, gauss + gauss % 2);
+      typename E::Geometry tabulated = fx.geo;
+      tabulated.points = &table;
+      tabulated.pointsOf = &fx.tab;
+      double Kt[N * N], Dt[N * N], ft[N], fForce[N];
+      E::tangent(fx.sec, tabulated, fx.tab, fx.q0, fx.u, fx.v, ft, Kt, Dt);
+      E::force(fx.sec, tabulated, fx.tab, fx.q0, fx.u, fx.v, fForce);
+      for (int k = 0; k < N; ++k) {
+        EXPECT_EQ(ft[k], f[k]);
+        EXPECT_NEAR(fForce[k], f[k], 1e-13 * maxAbs(f, N));
+      }
+      for (int k = 0; k < N * N; ++k) {
+        EXPECT_EQ(Kt[k], K[k]);
+        EXPECT_EQ(Dt[k], Dm[k]);
+      }
+      EXPECT_EQ(E::strainEnergy(fx.sec, tabulated, fx.tab, fx.q0, fx.u), E::strainEnergy(fx.sec, fx.geo, fx.tab, fx.q0, fx.u));
+      if (mode == 0) {  // and the force is the gradient of the strain energy
+        using Dl = math::Dual<N>;
+        Dl ud[N];
+        for (int k = 0; k < N; ++k) ud[k] = Dl::variable(fx.u[k], k);
+        const Dl U = E::strainEnergy(fx.sec, tabulated, fx.tab, fx.q0, ud);
+        for (int k = 0; k < N; ++k) EXPECT_NEAR(f[k], U.d[k], 1e-12 * maxAbs(f, N)) << gauss << " points";
+      }
+    }
 }
 
 TYPED_TEST(AncfCableTest, TaylorRemainderFallsAsHSquared) {

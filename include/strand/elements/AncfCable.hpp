@@ -27,7 +27,9 @@
 #pragma once
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
+#include "strand/elements/CablePointTable.hpp"
 #include "strand/elements/CableSection.hpp"
 #include "strand/elements/CableShapeTable.hpp"
 
@@ -54,9 +56,9 @@ public:
     double length = 0.0;                 // reference length l of the element [m]
     double slopeScale[2] = {1.0, 1.0};   // sigma of node 1 and 2
     const double* kappa0 = nullptr;      // reference curvature at each Gauss point, 2D (null: 0)
-    // slots() precomputed at the points of one table (uniform elements); used only with that table
-    const Slots* atGauss = nullptr;
-    const CableShapeTable* atGaussOf = nullptr;
+    // pointTable() precomputed at the points of one table (uniform elements); used only with that table
+    const CablePointTable* points = nullptr;
+    const CableShapeTable* pointsOf = nullptr;
   };
 
   static Slots slots(const Geometry& geo, const math::HermiteValues& h) {
@@ -71,14 +73,49 @@ public:
     return sl;
   }
   static Slots slotsAt(const Geometry& geo, const CableShapeTable& tab, int g) {
-    return (geo.atGauss && geo.atGaussOf == &tab) ? geo.atGauss[g] : slots(geo, tab.at[g]);
+    if (!(geo.points && geo.pointsOf == &tab)) return slots(geo, tab.at[g]);
+    Slots sl;
+    for (int a = 0; a < 4; ++a) {
+      sl.N[a] = geo.points->N[a][g];
+      sl.B1[a] = geo.points->B1[a][g];
+      sl.B2[a] = geo.points->B2[a][g];
+    }
+    return sl;
+  }
+
+  // The slots at all points of tab as a structure of arrays (CablePointTable.hpp).
+  static CablePointTable pointTable(const Geometry& geo, const CableShapeTable& tab) {
+    if (tab.size() < 1 || tab.size() > CablePointTable::kMax)
+      throw std::invalid_argument("AncfCable: 1 to 8 Gauss points");
+    CablePointTable t;
+    t.count = tab.size();
+    t.padded = t.count + t.count % 2;
+    for (int g = 0; g < CablePointTable::kMax; ++g) {
+      const Slots sl = slots(geo, tab.at[g < t.count ? g : t.count - 1]);
+      t.wl[g] = g < t.count ? tab.rule.w[g] * geo.length : 0.0;
+      for (int a = 0; a < 4; ++a) {
+        t.N[a][g] = sl.N[a];
+        t.B1[a][g] = sl.B1[a];
+        t.B2[a][g] = sl.B2[a];
+        t.wB1[a][g] = t.wl[g] * sl.B1[a];
+        t.wB2[a][g] = t.wl[g] * sl.B2[a];
+      }
+    }
+    return t;
+  }
+
+  // geo's own table when it has one for tab, else one built in scratch.
+  static const CablePointTable& pointsAt(const Geometry& geo, const CableShapeTable& tab, CablePointTable& scratch) {
+    if (geo.points && geo.pointsOf == &tab) return *geo.points;
+    scratch = pointTable(geo, tab);
+    return scratch;
   }
 
   // ---- pointwise kinematics, templated on the scalar (double, or math::Dual for tests) ----
 
   // c = r' x r'' (2D: the scalar z-component).
   template <class S>
-  static void cross(const S* g1, const S* g2, S* c) {
+  [[gnu::always_inline]] static void cross(const S* g1, const S* g2, S* c) {
     if constexpr (D == 2) {
       c[0] = g1[0] * g2[1] - g1[1] * g2[0];
     } else {
@@ -129,25 +166,9 @@ public:
   template <class S>
   static S strainEnergy(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
                         const double* q0, const S* u) {
-    S U(0.0);
-    for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slotsAt(geo, tab, g);
-      S G[kG];
-      const S eps = kinematics(sl, q0, u, G);
-      S w = 0.5 * sec.EA * eps * eps;
-      if constexpr (D == 3) {  // no reference curvature: |kappa|^2 = |r' x r''|^2 / s^3, no root
-        S c[3], s = G[0] * G[0] + G[1] * G[1] + G[2] * G[2];
-        cross(G, G + D, c);
-        w += 0.5 * sec.EI * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / (s * s * s);
-      } else {
-        S kap[kCurv];
-        curvature(G, kap);
-        const double k0 = geo.kappa0 ? geo.kappa0[g] : 0.0;
-        w += 0.5 * sec.EI * (kap[0] - k0) * (kap[0] - k0);
-      }
-      U += tab.rule.w[g] * geo.length * w;
-    }
-    return U;
+    CablePointTable scratch;
+    const CablePointTable& t = pointsAt(geo, tab, scratch);
+    return withPaddedPoints(t, [&](auto p) { return strainEnergyAt<decltype(p)::value>(sec, geo, t, q0, u); });
   }
 
   // Rayleigh dissipation function R = int 1/2 (EA c_eps deps^2 + EI c_kap |dkappa|^2) dx;
@@ -188,53 +209,22 @@ public:
   template <class S>
   static void force(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
                     const double* q0, const S* u, const S* v, S* f) {
-    for (int k = 0; k < kDof; ++k) f[k] = S(0.0);
+    CablePointTable scratch;
+    const CablePointTable& t = pointsAt(geo, tab, scratch);
     const bool damped = v && (sec.dampAxial != 0.0 || sec.dampBending != 0.0);
-    for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slotsAt(geo, tab, g);
-      S G[kG], Gd[kG];
-      const S eps = kinematics(sl, q0, u, G);
-      if (damped) gather(sl, v, Gd);
-      S fG[kG];
-      pointForce(sec, geo, g, eps, G, damped ? Gd : nullptr, fG);
-      const double wl = tab.rule.w[g] * geo.length;
-      for (int a = 1; a < 4; ++a)
-        for (int i = 0; i < D; ++i) f[a * D + i] += wl * (sl.B1[a] * fG[i] + sl.B2[a] * fG[D + i]);
-    }
-    for (int i = 0; i < D; ++i) f[i] = -f[2 * D + i];  // B_0 = -B_2 (completeFirstPosition)
+    withPaddedPoints(t, [&](auto p) { forceAt<decltype(p)::value>(sec, geo, t, q0, u, damped ? v : nullptr, f); });
   }
 
   // K = df/dq and Dm = df/dv (row-major kDof x kDof), returned separately (design section 2).
   // f (optional) receives the internal force; Dm may be null.
   static void tangent(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
                       const double* q0, const double* u, const double* v, double* f, double* K, double* Dm) {
-    for (int k = 0; k < kDof * kDof; ++k) K[k] = 0.0;
-    if (Dm)
-      for (int k = 0; k < kDof * kDof; ++k) Dm[k] = 0.0;
-    if (f)
-      for (int k = 0; k < kDof; ++k) f[k] = 0.0;
+    CablePointTable scratch;
+    const CablePointTable& t = pointsAt(geo, tab, scratch);
     const bool damped = v && (sec.dampAxial != 0.0 || sec.dampBending != 0.0);
-    for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slotsAt(geo, tab, g);
-      double G[kG], Gd[kG] = {};
-      const double eps = kinematics(sl, q0, u, G);
-      if (damped) gather(sl, v, Gd);
-      double fG[kG], KG[kG][kG], DG[kG][kG];
-      pointTangent(sec, geo, g, eps, G, damped ? Gd : nullptr, fG, KG, DG);
-      const double wl = tab.rule.w[g] * geo.length;
-      if (f)
-        for (int a = 1; a < 4; ++a)
-          for (int i = 0; i < D; ++i) f[a * D + i] += wl * (sl.B1[a] * fG[i] + sl.B2[a] * fG[D + i]);
-      scatterPointMatrix(sl, wl, KG, K, !damped);
-      if (Dm && damped) scatterPointMatrix(sl, wl, DG, Dm, false);
-    }
-    if (!damped)  // K is symmetric without damping: only blocks b >= a were summed
-      for (int r = D; r < kDof; ++r)
-        for (int c = (r / D + 1) * D; c < kDof; ++c) K[c * kDof + r] = K[r * kDof + c];
-    completeFirstPosition(K);
-    if (Dm && damped) completeFirstPosition(Dm);
-    if (f)
-      for (int i = 0; i < D; ++i) f[i] = -f[2 * D + i];
+    withPaddedPoints(t, [&](auto p) {
+      tangentAt<decltype(p)::value>(sec, geo, t, q0, u, damped ? v : nullptr, f, K, Dm);
+    });
   }
 
   // Consistent mass M = rhoA int N^T N dx (constant). tab must integrate degree 6 exactly (>= 4 points).
@@ -272,14 +262,263 @@ public:
   }
 
 private:
+  // ---- the Gauss points of one element as a structure of arrays ----
+  // X[k][g] is component k at point g, for the P (padded, CablePointTable.hpp) points of the
+  // element. Pointwise physics stays in pointForce and pointTangent; the loops here call them point
+  // by point (inlined), and with a compile-time P the compiler evaluates two or more points per
+  // instruction (-O3; docs/performance.md). The 3D tangent, too large for that, is written in array
+  // form (pointTangents3d).
+
+  // G = (r', r'') at every point from element coordinates (gather()).
+  template <int P, class S, class Q>
+  static void pointGather(const CablePointTable& t, const Q* q, S G[kG][P]) {
+    for (int i = 0; i < D; ++i) {
+      const Q chord = q[2 * D + i] - q[i], slope1 = q[D + i], slope2 = q[3 * D + i];
+      for (int g = 0; g < P; ++g) {
+        G[i][g] = t.B1[2][g] * chord + t.B1[1][g] * slope1 + t.B1[3][g] * slope2;
+        G[D + i][g] = t.B2[2][g] * chord + t.B2[1][g] * slope1 + t.B2[3][g] * slope2;
+      }
+    }
+  }
+
+  // G = G0 + Gu and the axial strain eps = r0'.u' + u'.u'/2 at every point (kinematics()).
+  template <int P, class S>
+  static void pointKinematics(const CablePointTable& t, const double* q0, const S* u, S G[kG][P], S eps[P]) {
+    double G0[kG][P];
+    pointGather<P>(t, q0, G0);
+    pointGather<P>(t, u, G);
+    for (int g = 0; g < P; ++g) eps[g] = S(0.0);
+    for (int i = 0; i < D; ++i)
+      for (int g = 0; g < P; ++g) eps[g] += G0[i][g] * G[i][g] + 0.5 * G[i][g] * G[i][g];
+    for (int k = 0; k < kG; ++k)
+      for (int g = 0; g < P; ++g) G[k][g] += G0[k][g];
+  }
+
+  // The 2D reference curvature at every point (0 on the padding, and in 3D).
+  template <int P>
+  static void referenceCurvature(const Geometry& geo, const CablePointTable& t, double k0[P]) {
+    for (int g = 0; g < P; ++g) k0[g] = (D == 2 && geo.kappa0 && g < t.count) ? geo.kappa0[g] : 0.0;
+  }
+
+  // f_a = sum_g w_g l (B1_a f_G[r'] + B2_a f_G[r'']) for the slots a = 1..3; slot 0 = -slot 2.
+  template <int P, class S>
+  static void integrateForce(const CablePointTable& t, const S fG[kG][P], S* f) {
+    for (int a = 1; a < 4; ++a)
+      for (int i = 0; i < D; ++i) {
+        S sum(0.0);
+        for (int g = 0; g < P; ++g) sum += t.wB1[a][g] * fG[i][g] + t.wB2[a][g] * fG[D + i][g];
+        f[a * D + i] = sum;
+      }
+    for (int i = 0; i < D; ++i) f[i] = -f[2 * D + i];  // B_0 = -B_2 (completeFirstPosition)
+  }
+
+  // pointForce at every point; Damped is a template argument so that the loop has no branch.
+  template <bool Damped, int P, class S>
+  static void pointForces(const CableSection& sec, const double k0[P], const S eps[P], const S G[kG][P],
+                          const S Gd[kG][P], S fG[kG][P]) {
+    for (int g = 0; g < P; ++g) {
+      S Gg[kG], Gdg[kG], fGg[kG];
+      for (int k = 0; k < kG; ++k) {
+        Gg[k] = G[k][g];
+        Gdg[k] = Damped ? Gd[k][g] : S(0.0);
+      }
+      pointForce(sec, k0[g], eps[g], Gg, Damped ? Gdg : nullptr, fGg);
+      for (int k = 0; k < kG; ++k) fG[k][g] = fGg[k];
+    }
+  }
+
+  template <int P, class S>
+  static void forceAt(const CableSection& sec, const Geometry& geo, const CablePointTable& t, const double* q0,
+                      const S* u, const S* v, S* f) {
+    S G[kG][P], eps[P], fG[kG][P];
+    double k0[P];
+    pointKinematics<P>(t, q0, u, G, eps);
+    referenceCurvature<P>(geo, t, k0);
+    if (v) {
+      S Gd[kG][P];
+      pointGather<P>(t, v, Gd);
+      pointForces<true, P>(sec, k0, eps, G, Gd, fG);
+    } else {
+      pointForces<false, P>(sec, k0, eps, G, G, fG);  // (the rates argument is unused)
+    }
+    integrateForce<P>(t, fG, f);
+  }
+
+  // W = 1/2 EA eps^2 + 1/2 EI |kappa - kappa0|^2 at every point, integrated.
+  template <int P, class S>
+  static S strainEnergyAt(const CableSection& sec, const Geometry& geo, const CablePointTable& t, const double* q0,
+                          const S* u) {
+    S G[kG][P], eps[P], w[P];
+    double k0[P];
+    pointKinematics<P>(t, q0, u, G, eps);
+    referenceCurvature<P>(geo, t, k0);
+    for (int g = 0; g < P; ++g) {
+      S Gg[kG];
+      for (int k = 0; k < kG; ++k) Gg[k] = G[k][g];
+      w[g] = 0.5 * sec.EA * eps[g] * eps[g];
+      if constexpr (D == 3) {  // no reference curvature: |kappa|^2 = |r' x r''|^2 / s^3, no root
+        S c[3];
+        const S s = Gg[0] * Gg[0] + Gg[1] * Gg[1] + Gg[2] * Gg[2];
+        cross(Gg, Gg + D, c);
+        w[g] += 0.5 * sec.EI * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / (s * s * s);
+      } else {
+        S kap[kCurv];
+        curvature(Gg, kap);
+        w[g] += 0.5 * sec.EI * (kap[0] - k0[g]) * (kap[0] - k0[g]);
+      }
+    }
+    S U(0.0);
+    for (int g = 0; g < P; ++g) U += t.wl[g] * w[g];
+    return U;
+  }
+
+  // pointTangent at every point (Damped: with the velocity-dependent terms and D_G); in 3D without
+  // curvature-rate damping the closed form pointTangents3d.
+  template <bool Damped, int P>
+  static void pointTangents(const CableSection& sec, const double k0[P], const double eps[P], const double G[kG][P],
+                            const double Gd[kG][P], double fG[kG][P], double KG[kG][kG][P], double DG[kG][kG][P]) {
+    if constexpr (D == 3) {
+      if (!(Damped && sec.dampBending != 0.0)) {
+        pointTangents3d<Damped, P>(sec, eps, G, Gd, fG, KG, DG);
+        return;
+      }
+    }
+    for (int g = 0; g < P; ++g) {
+      double Gg[kG], Gdg[kG], fGg[kG], KGg[kG][kG], DGg[kG][kG];
+      for (int k = 0; k < kG; ++k) {
+        Gg[k] = G[k][g];
+        Gdg[k] = Damped ? Gd[k][g] : 0.0;
+      }
+      pointTangent(sec, k0[g], eps[g], Gg, Damped ? Gdg : nullptr, fGg, KGg, DGg);
+      for (int k = 0; k < kG; ++k) {
+        fG[k][g] = fGg[k];
+        for (int l = 0; l < kG; ++l) {
+          KG[k][l][g] = KGg[k][l];
+          if (Damped) DG[k][l][g] = DGg[k][l];
+        }
+      }
+    }
+  }
+
+  // The 3D pointwise tangent without curvature-rate damping, the three curvature components summed
+  // in closed form. With C = dc/dG = [-[r'']x, [r']x] (3 x 6), e = (r', 0), the moments m = EI A c,
+  // mu = m.c and z = C^T (2m) = 2 (r'' x m, m x r'):
+  //   EI sum_i J_i J_i^T = EI (A^2 C^T C - 3AB (C^T c e^T + e c^T C) + 9 B^2 |c|^2 e e^T),
+  //   C^T C = [[|r''|^2 I - r'' r''^T, r' r''^T - (r'.r'') I], [sym., |r'|^2 I - r' r'^T]]
+  // ([a]x^T [b]x = (a.b) I - b a^T), and with pointTangent's moment terms
+  //   K_G = N P1 + EA e e^T (+ EA c_eps e (r'_dot, 0)^T) + (9 EI B^2 |c|^2 + 15 mu s^-7/2) e e^T
+  //         - 3 mu B P1 - 3B (z e^T + e z^T) + EI A^2 C^T C + A [[0, E], [E^T, 0]],  E_jk = sum_i m_i eps_ijk,
+  //   f_G = (N r' - 3 B mu r' + A r'' x m, A m x r'),   D_G = EA c_eps e e^T.
+  // Array form: every statement runs over the points in its innermost loop, so the loops vectorize.
+  template <bool Damped, int P>
+  static void pointTangents3d(const CableSection& sec, const double eps[P], const double G[6][P], const double Gd[6][P],
+                              double fG[6][P], double KG[6][6][P], double DG[6][6][P]) {
+    const double(*g1)[P] = G;      // r'
+    const double(*g2)[P] = G + 3;  // r''
+    double tension[P], A[P], B[P], mu[P], a2[P], ee[P], s1[P], s2[P], s12[P], m[3][P], mc1[3][P], mc2[3][P];
+    for (int g = 0; g < P; ++g) {
+      s1[g] = g1[0][g] * g1[0][g] + g1[1][g] * g1[1][g] + g1[2][g] * g1[2][g];
+      s2[g] = g2[0][g] * g2[0][g] + g2[1][g] * g2[1][g] + g2[2][g] * g2[2][g];
+      s12[g] = g1[0][g] * g2[0][g] + g1[1][g] * g2[1][g] + g1[2][g] * g2[2][g];
+      A[g] = 1.0 / (s1[g] * std::sqrt(s1[g]));
+      B[g] = A[g] / s1[g];
+      const double c0 = g1[1][g] * g2[2][g] - g1[2][g] * g2[1][g];
+      const double c1 = g1[2][g] * g2[0][g] - g1[0][g] * g2[2][g];
+      const double c2 = g1[0][g] * g2[1][g] - g1[1][g] * g2[0][g];
+      m[0][g] = sec.EI * A[g] * c0;
+      m[1][g] = sec.EI * A[g] * c1;
+      m[2][g] = sec.EI * A[g] * c2;
+      mu[g] = m[0][g] * c0 + m[1][g] * c1 + m[2][g] * c2;
+      a2[g] = sec.EI * A[g] * A[g];
+      ee[g] = 9.0 * sec.EI * B[g] * B[g] * (c0 * c0 + c1 * c1 + c2 * c2) + 15.0 * mu[g] * B[g] / s1[g];
+      tension[g] = sec.EA * eps[g];
+      if (Damped)
+        tension[g] += sec.EA * sec.dampAxial * (g1[0][g] * Gd[0][g] + g1[1][g] * Gd[1][g] + g1[2][g] * Gd[2][g]);
+    }
+    for (int i = 0; i < 3; ++i) {  // r'' x m and m x r'
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      for (int g = 0; g < P; ++g) {
+        mc1[i][g] = g2[j][g] * m[k][g] - g2[k][g] * m[j][g];
+        mc2[i][g] = m[j][g] * g1[k][g] - m[k][g] * g1[j][g];
+        fG[i][g] = (tension[g] - 3.0 * B[g] * mu[g]) * g1[i][g] + A[g] * mc1[i][g];
+        fG[3 + i][g] = A[g] * mc2[i][g];
+      }
+    }
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) {
+        const double same = j == k ? 1.0 : 0.0;
+        const int i = j == k ? 0 : 3 - j - k;  // E_jk = eps_ijk m_i
+        const double levi = j == k ? 0.0 : crossHessianE(i, j, k);
+        for (int g = 0; g < P; ++g) {
+          double rr = (sec.EA + ee[g]) * g1[j][g] * g1[k][g] - a2[g] * g2[j][g] * g2[k][g] -
+                      6.0 * B[g] * (mc1[j][g] * g1[k][g] + g1[j][g] * mc1[k][g]) +
+                      same * (tension[g] + a2[g] * s2[g] - 3.0 * mu[g] * B[g]);
+          if (Damped) {
+            rr += sec.EA * sec.dampAxial * g1[j][g] * Gd[k][g];
+            DG[j][k][g] = sec.EA * sec.dampAxial * g1[j][g] * g1[k][g];
+            DG[j][3 + k][g] = DG[3 + j][k][g] = DG[3 + j][3 + k][g] = 0.0;
+          }
+          const double rs = a2[g] * (g1[j][g] * g2[k][g] - same * s12[g]) + A[g] * levi * m[i][g] -
+                            6.0 * B[g] * g1[j][g] * mc2[k][g];
+          KG[j][k][g] = rr;
+          KG[j][3 + k][g] = rs;
+          KG[3 + k][j][g] = rs;
+          KG[3 + j][3 + k][g] = a2[g] * (same * s1[g] - g1[j][g] * g1[k][g]);
+        }
+      }
+  }
+
+  // Element matrix entries sum_g w_g l sum_{alpha,beta} B_alpha[a] X[alpha i][beta j] B_beta[b] for
+  // the slots a, b = 1..3; with upperOnly, only the blocks b >= a (the caller mirrors a symmetric
+  // result). Slot 0 (position of node 1) follows from completeFirstPosition.
+  template <int P>
+  static void integrateMatrix(const CablePointTable& t, const double X[kG][kG][P], double* K, bool upperOnly) {
+    for (int a = 1; a < 4; ++a)
+      for (int b = upperOnly ? a : 1; b < 4; ++b)
+        for (int i = 0; i < D; ++i)
+          for (int j = 0; j < D; ++j) {
+            double sum = 0.0;
+            for (int g = 0; g < P; ++g)
+              sum += t.wB1[a][g] * (X[i][j][g] * t.B1[b][g] + X[i][D + j][g] * t.B2[b][g]) +
+                     t.wB2[a][g] * (X[D + i][j][g] * t.B1[b][g] + X[D + i][D + j][g] * t.B2[b][g]);
+            K[(a * D + i) * kDof + b * D + j] = sum;
+          }
+  }
+
+  template <int P>
+  static void tangentAt(const CableSection& sec, const Geometry& geo, const CablePointTable& t, const double* q0,
+                        const double* u, const double* v, double* f, double* K, double* Dm) {
+    double G[kG][P], Gd[kG][P], eps[P], k0[P], fG[kG][P], KG[kG][kG][P], DG[kG][kG][P];
+    pointKinematics<P>(t, q0, u, G, eps);
+    referenceCurvature<P>(geo, t, k0);
+    if (v) {
+      pointGather<P>(t, v, Gd);
+      pointTangents<true, P>(sec, k0, eps, G, Gd, fG, KG, DG);
+    } else {
+      pointTangents<false, P>(sec, k0, eps, G, G, fG, KG, DG);  // (the rates argument is unused)
+    }
+    if (f) integrateForce<P>(t, fG, f);
+    integrateMatrix<P>(t, KG, K, !v);
+    if (!v)  // K is symmetric without damping: only blocks b >= a were summed
+      for (int r = D; r < kDof; ++r)
+        for (int c = (r / D + 1) * D; c < kDof; ++c) K[c * kDof + r] = K[r * kDof + c];
+    completeFirstPosition(K);
+    if (Dm && v) {
+      integrateMatrix<P>(t, DG, Dm, false);
+      completeFirstPosition(Dm);
+    } else if (Dm) {
+      for (int k = 0; k < kDof * kDof; ++k) Dm[k] = 0.0;
+    }
+  }
+
   // Pointwise generalized force f_G = N de/dG + m . dkappa/dG, with dkappa_i/dG = A dc_i/dG -
   // 3 c_i B (r', 0) (A = s^-3/2, B = s^-5/2, s = r'.r'). The sum over the curvature components
   // collapses: sum_i m_i dc_i/dG = (r'' x m, m x r') for c = r' x r'' (2D: m along z), so
   //   f_G = (N r' - 3 B (m.c) r' + A r'' x m,  A m x r').
   // The curvature rate (damping) is A dc - 3 B c (r'.r'_dot) with dc = r'_dot x r'' + r' x r''_dot.
+  // k0: the reference curvature (2D; 0 in 3D).
   template <class S>
-  static void pointForce(const CableSection& sec, const Geometry& geo, int g, const S& eps, const S* G, const S* Gd,
-                         S* fG) {
+  [[gnu::always_inline]] static void pointForce(const CableSection& sec, double k0, const S& eps, const S* G, const S* Gd, S* fG) {
     const S* g1 = G;
     const S* g2 = G + D;
     S s = g1[0] * g1[0];
@@ -299,8 +538,7 @@ private:
     }
     S m[kCurv], mu(0.0);
     for (int ci = 0; ci < kCurv; ++ci) {
-      const double k0 = (geo.kappa0 && D == 2) ? geo.kappa0[g * kCurv + ci] : 0.0;
-      m[ci] = sec.EI * (c[ci] * A - k0);
+      m[ci] = sec.EI * (c[ci] * A - (D == 2 ? k0 : 0.0));
       if (Gd) m[ci] += sec.EI * sec.dampBending * (A * dc[ci] - 3.0 * B * c[ci] * stretchRate);
       mu += m[ci] * c[ci];
     }
@@ -356,8 +594,9 @@ private:
   //   D_G  = EA c_eps e_G e_G^T + EI c_kap J^T J
   // with P1 = d e_G/dG and the curvature Hessian (A = s^-3/2, B = s^-5/2, s = r'.r')
   //   H_i  = A c_i,GG - 3B (c_i,G e_G^T + e_G c_i,G^T) + 15 c_i s^-7/2 e_G e_G^T - 3 c_i B P1.
-  static void pointTangent(const CableSection& sec, const Geometry& geo, int g, double eps, const double* G,
-                           const double* Gd, double* fG, double KG[kG][kG], double DG[kG][kG]) {
+  // (3D without curvature-rate damping: pointTangents3d, the same terms in closed form.)
+  [[gnu::always_inline]] static void pointTangent(const CableSection& sec, double k0, double eps, const double* G,
+                                                  const double* Gd, double* fG, double KG[kG][kG], double DG[kG][kG]) {
     double s = 0.0;
     for (int i = 0; i < D; ++i) s += G[i] * G[i];
     const double A = 1.0 / (s * std::sqrt(s)), B = A / s, C7 = B / s;
@@ -386,12 +625,6 @@ private:
         }
       }
     }
-    if constexpr (D == 3) {
-      if (cKap == 0.0) {  // no curvature-rate damping: the closed form below
-        bendingTangent3d(sec.EI, A, B, C7, G, c, fG, KG);
-        return;
-      }
-    }
     crossGradient(G, cG);
     // bending part. sum_i m_i H_i collapses to rank-one terms in w = sum_i m_i c_i,G and
     // mu = sum_i m_i c_i (plus the constant c_i,GG), so no Hessian is formed per component.
@@ -399,8 +632,7 @@ private:
     for (int ci = 0; ci < kCurv; ++ci) {
       for (int k = 0; k < kG; ++k) J[ci][k] = A * cG[ci][k];
       for (int i = 0; i < D; ++i) J[ci][i] -= 3.0 * c[ci] * B * G[i];
-      const double k0 = (geo.kappa0 && D == 2) ? geo.kappa0[g * kCurv + ci] : 0.0;
-      moment[ci] = sec.EI * (c[ci] * A - k0);
+      moment[ci] = sec.EI * (c[ci] * A - (D == 2 ? k0 : 0.0));
       if (Gd) {
         double kDot = 0.0;
         for (int k = 0; k < kG; ++k) kDot += J[ci][k] * Gd[k];
@@ -459,72 +691,6 @@ private:
             DG[a][b] += sec.EI * cKap * J[ci][a] * J[ci][b];
           }
       }
-    }
-  }
-
-  // The bending part of pointTangent in 3D without curvature-rate damping, summed over the three
-  // curvature components in closed form. With C = dc/dG = [-[r'']x, [r']x] (3 x 6), the moments
-  // m = EI A c, mu = m.c, p = m + EI A c and z = C^T p = (r'' x p, p x r'):
-  //   EI sum_i J_i J_i^T = EI (A^2 C^T C - 3AB (C^T c e^T + e c^T C) + 9 B^2 |c|^2 e e^T),
-  //   C^T C = [[|r''|^2 I - r'' r''^T, r' r''^T - (r'.r'') I], [sym., |r'|^2 I - r' r'^T]]
-  // ([a]x^T [b]x = (a.b) I - b a^T), and with pointTangent's moment terms
-  //   K_G += (9 EI B^2 |c|^2 + 15 mu s^-7/2) e e^T - 3 mu B P1 - 3B (z e^T + e z^T)
-  //          + EI A^2 C^T C + A [[0, E], [E^T, 0]],   E_jk = sum_i m_i eps_ijk,
-  // and f_G += (-3 B mu r' + A r'' x m, A m x r'). Same terms as the general path, fewer flops.
-  static void bendingTangent3d(double EI, double A, double B, double C7, const double* G, const double* c, double* fG,
-                               double KG[kG][kG]) {
-    const double* g1 = G;
-    const double* g2 = G + 3;
-    double m[3], p[3], mu = 0.0, cc = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      m[i] = EI * A * c[i];
-      p[i] = 2.0 * m[i];  // m + EI A c
-      mu += m[i] * c[i];
-      cc += c[i] * c[i];
-    }
-    double mc1[3], mc2[3], z1[3], z2[3];
-    cross(g2, m, mc1);
-    cross(m, g1, mc2);
-    cross(g2, p, z1);
-    cross(p, g1, z2);
-    double s1 = 0.0, s2 = 0.0, s12 = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      s1 += g1[i] * g1[i];
-      s2 += g2[i] * g2[i];
-      s12 += g1[i] * g2[i];
-      fG[i] += -3.0 * B * mu * g1[i] + A * mc1[i];
-      fG[3 + i] += A * mc2[i];
-    }
-    const double a2 = EI * A * A, ee = 9.0 * EI * B * B * cc + 15.0 * mu * C7;
-    const double E[3][3] = {{0.0, m[2], -m[1]}, {-m[2], 0.0, m[0]}, {m[1], -m[0], 0.0}};
-    for (int j = 0; j < 3; ++j) {
-      KG[j][j] += a2 * s2 - 3.0 * mu * B;
-      KG[3 + j][3 + j] += a2 * s1;
-      KG[j][3 + j] -= a2 * s12;
-      KG[3 + j][j] -= a2 * s12;
-      for (int k = 0; k < 3; ++k) {
-        KG[j][k] += ee * g1[j] * g1[k] - a2 * g2[j] * g2[k] - 3.0 * B * (z1[j] * g1[k] + g1[j] * z1[k]);
-        const double offDiagonal = a2 * g1[j] * g2[k] + A * E[j][k] - 3.0 * B * g1[j] * z2[k];
-        KG[j][3 + k] += offDiagonal;
-        KG[3 + k][j] += offDiagonal;
-        KG[3 + j][3 + k] -= a2 * g1[j] * g1[k];
-      }
-    }
-  }
-
-  // Element matrix += wl * sum_{alpha,beta} B_alpha[a] X[alpha i][beta j] B_beta[b] for the slots
-  // a, b = 1..3; with upperOnly, only the blocks b >= a (the caller mirrors a symmetric result).
-  // Slot 0 (position of node 1) follows from completeFirstPosition.
-  static void scatterPointMatrix(const Slots& sl, double wl, const double X[kG][kG], double* K, bool upperOnly) {
-    for (int a = 1; a < 4; ++a) {
-      double T[D][kG];  // rows of node-slot a: B1_a X[r', :] + B2_a X[r'', :]
-      for (int i = 0; i < D; ++i)
-        for (int k = 0; k < kG; ++k) T[i][k] = wl * (sl.B1[a] * X[i][k] + sl.B2[a] * X[D + i][k]);
-      for (int b = upperOnly ? a : 1; b < 4; ++b)
-        for (int i = 0; i < D; ++i) {
-          double* row = K + (a * D + i) * kDof + b * D;
-          for (int j = 0; j < D; ++j) row[j] += T[i][j] * sl.B1[b] + T[i][D + j] * sl.B2[b];
-        }
     }
   }
 

@@ -47,6 +47,7 @@ struct Constraint {
 
   // Value v (D) and derivative dv (D x n) of a field.
   static void field(const JointField& f, const double* q, int n, double* v, double* dv) {
+    for (int i = 0; i < D; ++i) v[i] = 0.0;
     for (int i = 0; i < D * n; ++i) dv[i] = 0.0;
     switch (f.kind) {
       case JointField::Kind::Constant:
