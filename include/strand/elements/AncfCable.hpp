@@ -137,7 +137,7 @@ public:
     }
   }
 
-  // Curvature vector kappa = r' x r'' / |r'|^3 (the axial strain comes from kinematics()).
+  // Curvature vector kappa = r' x r'' / |r'|^3 (the axial strain comes from pointKinematics()).
   template <class S>
   static void curvature(const S* G, S* kappa) {
     S s = G[0] * G[0];
@@ -147,19 +147,6 @@ public:
     S c[kCurv];
     cross(G, G + D, c);
     for (int i = 0; i < kCurv; ++i) kappa[i] = c[i] * inv;
-  }
-
-  // Pointwise G = G0 + Gu and the axial strain eps = r0'.u' + u'.u'/2 (no cancellation).
-  template <class S>
-  static S kinematics(const Slots& sl, const double* q0, const S* u, S* G) {
-    double G0[kG];
-    S Gu[kG];
-    gather(sl, q0, G0);
-    gather(sl, u, Gu);
-    S eps(0.0);
-    for (int i = 0; i < D; ++i) eps += G0[i] * Gu[i] + 0.5 * Gu[i] * Gu[i];
-    for (int k = 0; k < kG; ++k) G[k] = G0[k] + Gu[k];
-    return eps;
   }
 
   // Strain energy of the element (no damping): int W dx.
@@ -176,31 +163,9 @@ public:
   template <class S>
   static S dissipation(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab,
                        const double* q0, const S* u, const S* v) {
-    S R(0.0);
-    for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slotsAt(geo, tab, g);
-      S G[kG], Gd[kG];
-      kinematics(sl, q0, u, G);
-      gather(sl, v, Gd);
-      S epsDot = G[0] * Gd[0];
-      for (int i = 1; i < D; ++i) epsDot += G[i] * Gd[i];
-      // kappa-dot by the exact time derivative of c / s^(3/2)
-      S s = G[0] * G[0], sDot = 2.0 * G[0] * Gd[0];
-      for (int i = 1; i < D; ++i) { s += G[i] * G[i]; sDot += 2.0 * G[i] * Gd[i]; }
-      using std::sqrt;
-      const S s32 = s * sqrt(s);
-      S c[kCurv], c1[kCurv], c2[kCurv];
-      cross(G, G + D, c);
-      cross(Gd, G + D, c1);
-      cross(G, Gd + D, c2);
-      S r = 0.5 * sec.EA * sec.dampAxial * epsDot * epsDot;
-      for (int i = 0; i < kCurv; ++i) {
-        const S kd = (c1[i] + c2[i]) / s32 - 1.5 * c[i] * sDot / (s32 * s);
-        r += 0.5 * sec.EI * sec.dampBending * kd * kd;
-      }
-      R += tab.rule.w[g] * geo.length * r;
-    }
-    return R;
+    CablePointTable scratch;
+    const CablePointTable& t = pointsAt(geo, tab, scratch);
+    return withPaddedPoints(t, [&](auto p) { return dissipationAt<decltype(p)::value>(sec, t, q0, u, v); });
   }
 
   // ---- residual and tangent ----
@@ -269,7 +234,7 @@ private:
   // instruction (-O3; docs/performance.md). The 3D tangent, too large for that, is written in array
   // form (pointTangents3d).
 
-  // G = (r', r'') at every point from element coordinates (gather()).
+  // G = (r', r'') at every point from element coordinates (gather(): positions via the chord).
   template <int P, class S, class Q>
   static void pointGather(const CablePointTable& t, const Q* q, S G[kG][P]) {
     for (int i = 0; i < D; ++i) {
@@ -281,7 +246,13 @@ private:
     }
   }
 
-  // G = G0 + Gu and the axial strain eps = r0'.u' + u'.u'/2 at every point (kinematics()).
+  // Point g of an array X[k][g] (the pointwise functions take one point's values).
+  template <int P, class S>
+  [[gnu::always_inline]] static void lane(const S X[kG][P], int g, S* x) {
+    for (int k = 0; k < kG; ++k) x[k] = X[k][g];
+  }
+
+  // G = G0 + Gu and the axial strain eps = r0'.u' + u'.u'/2 at every point (no cancellation).
   template <int P, class S>
   static void pointKinematics(const CablePointTable& t, const double* q0, const S* u, S G[kG][P], S eps[P]) {
     double G0[kG][P];
@@ -318,10 +289,8 @@ private:
                           const S Gd[kG][P], S fG[kG][P]) {
     for (int g = 0; g < P; ++g) {
       S Gg[kG], Gdg[kG], fGg[kG];
-      for (int k = 0; k < kG; ++k) {
-        Gg[k] = G[k][g];
-        Gdg[k] = Damped ? Gd[k][g] : S(0.0);
-      }
+      lane<P>(G, g, Gg);
+      if (Damped) lane<P>(Gd, g, Gdg);
       pointForce(sec, k0[g], eps[g], Gg, Damped ? Gdg : nullptr, fGg);
       for (int k = 0; k < kG; ++k) fG[k][g] = fGg[k];
     }
@@ -354,7 +323,7 @@ private:
     referenceCurvature<P>(geo, t, k0);
     for (int g = 0; g < P; ++g) {
       S Gg[kG];
-      for (int k = 0; k < kG; ++k) Gg[k] = G[k][g];
+      lane<P>(G, g, Gg);
       w[g] = 0.5 * sec.EA * eps[g] * eps[g];
       if constexpr (D == 3) {  // no reference curvature: |kappa|^2 = |r' x r''|^2 / s^3, no root
         S c[3];
@@ -372,6 +341,42 @@ private:
     return U;
   }
 
+  // R = 1/2 (EA c_eps deps^2 + EI c_kap |dkappa|^2) at every point, integrated.
+  template <int P, class S>
+  static S dissipationAt(const CableSection& sec, const CablePointTable& t, const double* q0, const S* u,
+                         const S* v) {
+    S G[kG][P], Gd[kG][P], eps[P];
+    pointKinematics<P>(t, q0, u, G, eps);
+    pointGather<P>(t, v, Gd);
+    S R(0.0);
+    for (int g = 0; g < P; ++g) {
+      S Gg[kG], Gdg[kG];
+      lane<P>(G, g, Gg);
+      lane<P>(Gd, g, Gdg);
+      S epsDot = Gg[0] * Gdg[0];
+      for (int i = 1; i < D; ++i) epsDot += Gg[i] * Gdg[i];
+      // kappa-dot by the exact time derivative of c / s^(3/2)
+      S s = Gg[0] * Gg[0], sDot = 2.0 * Gg[0] * Gdg[0];
+      for (int i = 1; i < D; ++i) {
+        s += Gg[i] * Gg[i];
+        sDot += 2.0 * Gg[i] * Gdg[i];
+      }
+      using std::sqrt;
+      const S s32 = s * sqrt(s);
+      S c[kCurv], c1[kCurv], c2[kCurv];
+      cross(Gg, Gg + D, c);
+      cross(Gdg, Gg + D, c1);
+      cross(Gg, Gdg + D, c2);
+      S r = 0.5 * sec.EA * sec.dampAxial * epsDot * epsDot;
+      for (int i = 0; i < kCurv; ++i) {
+        const S kd = (c1[i] + c2[i]) / s32 - 1.5 * c[i] * sDot / (s32 * s);
+        r += 0.5 * sec.EI * sec.dampBending * kd * kd;
+      }
+      R += t.wl[g] * r;
+    }
+    return R;
+  }
+
   // pointTangent at every point (Damped: with the velocity-dependent terms and D_G); in 3D without
   // curvature-rate damping the closed form pointTangents3d.
   template <bool Damped, int P>
@@ -385,10 +390,8 @@ private:
     }
     for (int g = 0; g < P; ++g) {
       double Gg[kG], Gdg[kG], fGg[kG], KGg[kG][kG], DGg[kG][kG];
-      for (int k = 0; k < kG; ++k) {
-        Gg[k] = G[k][g];
-        Gdg[k] = Damped ? Gd[k][g] : 0.0;
-      }
+      lane<P>(G, g, Gg);
+      if (Damped) lane<P>(Gd, g, Gdg);
       pointTangent(sec, k0[g], eps[g], Gg, Damped ? Gdg : nullptr, fGg, KGg, DGg);
       for (int k = 0; k < kG; ++k) {
         fG[k][g] = fGg[k];
