@@ -8,41 +8,37 @@
 #include <algorithm>
 #include <vector>
 
+#include "solvers/InterfaceSchurData.hpp"
+
 namespace strand::solvers {
+
+namespace schur {
+
+// x_G from the interface right-hand sides g of this rank (all ranks' gathered and solved).
+PetscErrorCode interfaceSolve(const SchurData& d, MPI_Comm comm, const std::vector<PetscScalar>& g, bool transpose,
+                              Eigen::VectorXd* x) {
+  PetscFunctionBeginUser;
+  Eigen::VectorXd gAll(d.gamma.size());
+  PetscCallMPI(MPI_Allgatherv(g.data(), static_cast<PetscMPIInt>(g.size()), MPIU_SCALAR, gAll.data(), d.counts.data(),
+                              d.offsets.data(), MPIU_SCALAR, comm));
+  *x = transpose ? Eigen::VectorXd(d.schur.transpose().solve(gAll)) : Eigen::VectorXd(d.schur.solve(gAll));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace schur
 
 namespace {
 
-using RowMajor = Eigen::Matrix<PetscScalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-struct SchurData {
-  bool built = false, failed = false;
-  PetscInt rows = 0;  // local rows
-  std::vector<PetscInt> interface;  // local rows on the interface, ascending
-  // A_II as the local diagonal block with the interface rows and columns replaced by the identity:
-  // no submatrix to extract, and its solution is zero on the interface rows
-  Mat interiorBlock = nullptr;
-  KSP interiorSolver = nullptr;
-  Vec w = nullptr, y = nullptr, t = nullptr;  // local work vectors (y: borrows an array)
-  // A_GI: for each own interface row, its entries in own interior columns (local column, value)
-  std::vector<std::vector<std::pair<PetscInt, PetscScalar>>> agi;
-  // the interface over all ranks: global rows (ascending), counts and offsets per rank
-  std::vector<PetscInt> gamma;
-  std::vector<PetscMPIInt> counts, offsets;
-  PetscInt ownOffset = 0;
-  Eigen::PartialPivLU<Eigen::MatrixXd> schur;
-  // Z = A_II^{-1} A_IG (own interface columns; zero rows on the interface): the interior's response
-  // to unit interface values, computed for S anyway; keeping it saves the second interior solve of
-  // an apply
-  Eigen::MatrixXd Z;
-};
+using schur::RowMajor;
+using schur::SchurData;
 
 SchurData* dataOf(PC pc) { return static_cast<SchurData*>(pc->data); }
 
+PetscErrorCode clearLocalSolve(SchurData* d);
+
 PetscErrorCode clear(SchurData* d) {
   PetscFunctionBeginUser;
-  PetscCall(MatDestroy(&d->interiorBlock));
-  PetscCall(KSPDestroy(&d->interiorSolver));
-  for (Vec* v : {&d->w, &d->y, &d->t}) PetscCall(VecDestroy(v));
+  PetscCall(clearLocalSolve(d));
   d->built = false;
   PetscFunctionReturn(0);
 }
@@ -126,13 +122,16 @@ PetscErrorCode createInteriorSolver(PC pc, SchurData* d) {
   PetscCall(KSPSetType(d->interiorSolver, KSPPREONLY));
   PetscCall(KSPGetPC(d->interiorSolver, &lu));
   PetscCall(PCSetType(lu, PCLU));
-  PetscCall(PCFactorSetMatOrderingType(lu, MATORDERINGRCM));  // keeps the band (StaticSolver.cpp)
+  // RCM keeps the band (StaticSolver.cpp); the split sweeps need the natural order (PETSc's BAIJ LU
+  // has forward and backward sweeps only there), which splitSweepsFit checked to be banded
+  PetscCall(PCFactorSetMatOrderingType(lu, d->sweeps ? MATORDERINGNATURAL : MATORDERINGRCM));
   PetscCall(KSPSetFromOptions(d->interiorSolver));
   PetscFunctionReturn(0);
 }
 
-// This rank's rows of S, row-major, |own interface| x |interface|: A_GG (all columns on the
-// interface) minus A_GI Z (own interface columns); keeps A_GI's entries and Z.
+// This rank's rows of S, row-major, |own interface| x |interface|. Interior solve: A_GG (all
+// columns on the interface) minus A_GI Z (own interface columns); keeps A_GI's entries and Z.
+// Split sweeps: A_GG's columns of the other ranks' interface, and S00 = L_GG U_GG in the own ones.
 PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar>* rows) {
   const PetscInt nG = static_cast<PetscInt>(d->gamma.size()), mine = static_cast<PetscInt>(d->interface.size());
   PetscInt rstart, rend;
@@ -147,15 +146,25 @@ PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar
     PetscCall(MatGetRow(P, rstart + d->interface[i], &nc, &c, &v));
     for (PetscInt k = 0; k < nc; ++k) {
       auto at = std::lower_bound(d->gamma.begin(), d->gamma.end(), c[k]);
-      if (at != d->gamma.end() && *at == c[k]) (*rows)[i * nG + (at - d->gamma.begin())] += v[k];
-      else if (c[k] >= rstart && c[k] < rend) d->agi[i].emplace_back(c[k] - rstart, v[k]);
-      else
+      const PetscInt column = static_cast<PetscInt>(at - d->gamma.begin());
+      const bool own = c[k] >= rstart && c[k] < rend;
+      if (at != d->gamma.end() && *at == c[k]) {
+        if (!(d->sweeps && own)) (*rows)[i * nG + column] += v[k];
+      } else if (own) {
+        if (!d->sweeps) d->agi[i].emplace_back(c[k] - rstart, v[k]);
+      } else
         SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
                 "PC %s needs a structurally symmetric matrix: row %d couples to column %d of another rank, "
                 "which is not on the interface",
                 kPcInterfaceSchur, static_cast<int>(rstart + d->interface[i]), static_cast<int>(c[k]));
     }
     PetscCall(MatRestoreRow(P, rstart + d->interface[i], &nc, &c, &v));
+  }
+  if (d->sweeps) {
+    PetscCall(schur::segmentSchur(d));
+    for (PetscInt i = 0; i < mine; ++i)
+      for (PetscInt j = 0; j < mine; ++j) (*rows)[i * nG + d->ownOffset + j] += d->S00(i, j);
+    PetscFunctionReturn(0);
   }
   // column j of Z: A_II^{-1} A_IG e_j. A_IG e_j is column j of A_d on the interior rows, whose
   // entries sit (structural symmetry) in the rows named by row j's interior columns.
@@ -175,6 +184,51 @@ PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar
   PetscFunctionReturn(0);
 }
 
+// The local matrix, solver and work vectors of this rank's way to solve its segment.
+PetscErrorCode prepareLocalSolve(PC pc, SchurData* d, Mat Ad) {
+  PetscFunctionBeginUser;
+  PetscCall(createInteriorSolver(pc, d));
+  if (d->sweeps) PetscCall(schur::buildSegment(d, Ad));
+  else PetscCall(MatDuplicate(Ad, MAT_DO_NOT_COPY_VALUES, &d->interiorBlock));
+  PetscCall(MatCreateVecs(d->sweeps ? d->segment : d->interiorBlock, &d->w, &d->t));
+  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, d->rows, nullptr, &d->y));
+  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, d->rows, nullptr, &d->u));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode clearLocalSolve(SchurData* d) {
+  PetscFunctionBeginUser;
+  PetscCall(MatDestroy(&d->interiorBlock));
+  PetscCall(MatDestroy(&d->segment));
+  PetscCall(KSPDestroy(&d->interiorSolver));
+  for (Vec* v : {&d->w, &d->y, &d->t, &d->u}) PetscCall(VecDestroy(v));
+  PetscFunctionReturn(0);
+}
+
+// Copies A_d's values into the local matrix and factors it (local; a failure is read after).
+PetscErrorCode factorLocal(SchurData* d, Mat Ad) {
+  PetscFunctionBeginUser;
+  Mat local = d->sweeps ? d->segment : d->interiorBlock;
+  if (d->sweeps) {
+    PetscCall(schur::fillSegment(d, Ad));
+  } else {
+    PetscCall(MatCopy(Ad, d->interiorBlock, SAME_NONZERO_PATTERN));
+    PetscCall(MatZeroRowsColumns(d->interiorBlock, static_cast<PetscInt>(d->interface.size()), d->interface.data(),
+                                 1.0, nullptr, nullptr));
+  }
+  PetscCall(KSPSetOperators(d->interiorSolver, local, local));
+  PetscCall(KSPSetUp(d->interiorSolver));
+  PetscFunctionReturn(0);
+}
+
+PCFailedReason localFailure(SchurData* d) {
+  PC lu;
+  PCFailedReason reason = PC_NOERROR;
+  PetscCallAbort(PETSC_COMM_SELF, KSPGetPC(d->interiorSolver, &lu));
+  PetscCallAbort(PETSC_COMM_SELF, PCGetFailedReason(lu, &reason));
+  return reason;
+}
+
 PetscErrorCode setUp(PC pc) {
   SchurData* d = dataOf(pc);
   Mat P = pc->pmat, Ad, Ao;
@@ -186,24 +240,23 @@ PetscErrorCode setUp(PC pc) {
   PetscCall(localBlocks(P, &Ad, &Ao, &blocked));
   if (!d->built) {
     PetscCall(findInterface(d, P));
-    PetscCall(createInteriorSolver(pc, d));
-    PetscCall(MatDuplicate(Ad, MAT_COPY_VALUES, &d->interiorBlock));
-    PetscCall(MatCreateVecs(d->interiorBlock, &d->w, &d->t));
-    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, d->rows, nullptr, &d->y));
-  } else {
-    PetscCall(MatCopy(Ad, d->interiorBlock, SAME_NONZERO_PATTERN));
+    PetscCall(schur::splitSweepsFit(d, Ad, blocked));
+    PetscCall(prepareLocalSolve(pc, d, Ad));
   }
-  PetscCall(MatZeroRowsColumns(d->interiorBlock, static_cast<PetscInt>(d->interface.size()), d->interface.data(), 1.0,
-                               nullptr, nullptr));
+  PetscCall(factorLocal(d, Ad));
+  PetscBool available = PETSC_TRUE;
+  if (d->sweeps && !localFailure(d)) PetscCall(schur::sweepsAvailable(d, &available));
+  if (!available) {  // e.g. another ordering or solver package chosen for the local LU: no sweeps
+    PetscCall(clearLocalSolve(d));
+    d->sweeps = false;
+    d->sweepsRefused = true;
+    PetscCall(prepareLocalSolve(pc, d, Ad));
+    PetscCall(factorLocal(d, Ad));
+  }
   d->built = true;
 
   // a zero pivot on one rank fails the solve on all (the apply below is collective)
-  PC lu;
-  PCFailedReason reason = PC_NOERROR;
-  PetscCall(KSPSetOperators(d->interiorSolver, d->interiorBlock, d->interiorBlock));
-  PetscCall(KSPSetUp(d->interiorSolver));
-  PetscCall(KSPGetPC(d->interiorSolver, &lu));
-  PetscCall(PCGetFailedReason(lu, &reason));
+  const PCFailedReason reason = localFailure(d);
   PetscMPIInt failedHere = reason != PC_NOERROR, failed;
   PetscCallMPI(MPI_Allreduce(&failedHere, &failed, 1, MPI_INT, MPI_MAX, comm));
   d->failed = failed;
@@ -240,18 +293,6 @@ PetscErrorCode interiorPart(SchurData* d, const PetscScalar* b) {
   PetscFunctionReturn(0);
 }
 
-// x_G from the interface right-hand sides g of this rank (all ranks' gathered and solved).
-PetscErrorCode interfaceSolve(PC pc, const std::vector<PetscScalar>& g, bool transpose, Eigen::VectorXd* x) {
-  SchurData* d = dataOf(pc);
-  PetscFunctionBeginUser;
-  Eigen::VectorXd gAll(d->gamma.size());
-  PetscCallMPI(MPI_Allgatherv(g.data(), static_cast<PetscMPIInt>(g.size()), MPIU_SCALAR, gAll.data(),
-                              d->counts.data(), d->offsets.data(), MPIU_SCALAR,
-                              PetscObjectComm(reinterpret_cast<PetscObject>(pc))));
-  *x = transpose ? Eigen::VectorXd(d->schur.transpose().solve(gAll)) : Eigen::VectorXd(d->schur.solve(gAll));
-  PetscFunctionReturn(0);
-}
-
 // y = A^{-1} b:  y_I = A_II^{-1} b_I;  S x_G = b_G - A_GI y_I;  x_I = y_I - Z x_G.
 PetscErrorCode apply(PC pc, Vec b, Vec x) {
   SchurData* d = dataOf(pc);
@@ -264,6 +305,13 @@ PetscErrorCode apply(PC pc, Vec b, Vec x) {
   const PetscScalar* bArray;
   PetscScalar* xArray;
   PetscCall(VecGetArrayRead(b, &bArray));
+  if (d->sweeps) {
+    PetscCall(VecGetArray(x, &xArray));
+    PetscCall(schur::applySweeps(d, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), bArray, xArray));
+    PetscCall(VecRestoreArray(x, &xArray));
+    PetscCall(VecRestoreArrayRead(b, &bArray));
+    PetscFunctionReturn(0);
+  }
   PetscCall(interiorPart(d, bArray));
   PetscCall(VecGetArray(x, &xArray));
   PetscCall(VecPlaceArray(d->y, xArray));
@@ -276,7 +324,7 @@ PetscErrorCode apply(PC pc, Vec b, Vec x) {
   }
   PetscCall(VecRestoreArrayRead(b, &bArray));
   Eigen::VectorXd xG;
-  PetscCall(interfaceSolve(pc, g, false, &xG));
+  PetscCall(schur::interfaceSolve(*d, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), g, false, &xG));
   if (mine > 0) {
     Eigen::Map<Eigen::VectorXd>(xArray, d->Z.rows()) -= d->Z * xG.segment(d->ownOffset, mine);
     for (PetscInt i = 0; i < mine; ++i) xArray[d->interface[i]] = xG[d->ownOffset + i];
@@ -303,6 +351,12 @@ PetscErrorCode applyTranspose(PC pc, Vec b, Vec x) {
   PetscScalar* xArray;
   PetscCall(VecGetArrayRead(b, &bArray));
   PetscCall(VecGetArray(x, &xArray));
+  if (d->sweeps) {
+    PetscCall(schur::applyTransposeSweeps(d, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), bArray, xArray));
+    PetscCall(VecRestoreArray(x, &xArray));
+    PetscCall(VecRestoreArrayRead(b, &bArray));
+    PetscFunctionReturn(0);
+  }
   PetscCall(VecPlaceArray(d->y, xArray));
   PetscCall(interiorPart(d, bArray));
   PetscCall(KSPSolveTranspose(d->interiorSolver, d->w, d->y));
@@ -312,7 +366,7 @@ PetscErrorCode applyTranspose(PC pc, Vec b, Vec x) {
   for (PetscInt i = 0; i < mine; ++i) g[i] = bArray[d->interface[i]] - t[d->interface[i]];
   PetscCall(VecRestoreArrayRead(d->t, &t));
   Eigen::VectorXd xG;
-  PetscCall(interfaceSolve(pc, g, true, &xG));
+  PetscCall(schur::interfaceSolve(*d, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), g, true, &xG));
   PetscCall(VecSet(d->y, 0.0));
   for (PetscInt i = 0; i < mine; ++i) xArray[d->interface[i]] = xG[d->ownOffset + i];
   PetscCall(MatMultTranspose(Ad, d->y, d->t));  // A_GI^T x_G on the interior rows
@@ -347,9 +401,10 @@ PetscErrorCode view(PC pc, PetscViewer viewer) {
   PetscCall(PetscViewerASCIIPrintf(viewer, "  interface Schur complement: %d interface unknowns\n",
                                    static_cast<int>(d->gamma.size())));
   PetscCall(PetscViewerASCIIPushSynchronized(viewer));
-  PetscCall(PetscViewerASCIISynchronizedPrintf(viewer, "  [%d] interior unknowns %d\n",
-                                               static_cast<int>(PetscGlobalRank),
-                                               static_cast<int>(d->rows - d->interface.size())));
+  PetscCall(PetscViewerASCIISynchronizedPrintf(
+      viewer, "  [%d] interior unknowns %d, %s\n", static_cast<int>(PetscGlobalRank),
+      static_cast<int>(d->rows - d->interface.size()),
+      d->sweeps ? (d->reversed ? "split sweeps (blocks reversed)" : "split sweeps") : "interior solve with Z"));
   PetscCall(PetscViewerFlush(viewer));
   PetscCall(PetscViewerASCIIPopSynchronized(viewer));
   PetscFunctionReturn(0);
@@ -385,6 +440,16 @@ PetscErrorCode InterfaceSchurGetSizes(PC pc, PetscInt* interface, PetscInt* loca
              kPcInterfaceSchur);
   *interface = static_cast<PetscInt>(dataOf(pc)->gamma.size());
   *localInterior = dataOf(pc)->rows - static_cast<PetscInt>(dataOf(pc)->interface.size());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode InterfaceSchurUsesSplitSweeps(PC pc, PetscBool* sweeps) {
+  PetscBool match;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), kPcInterfaceSchur, &match));
+  PetscCheck(match, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), PETSC_ERR_ARG_WRONG, "PC is not %s",
+             kPcInterfaceSchur);
+  *sweeps = static_cast<PetscBool>(dataOf(pc)->sweeps);
   PetscFunctionReturn(0);
 }
 

@@ -171,3 +171,24 @@ TEST(InterfaceSchur, AZeroPivotOnOneRankFailsTheSolveOnAll) {
   VecDestroy(&b);
   VecDestroy(&x);
 }
+
+// The split sweeps (InterfaceSchurSweeps.cpp) serve the segments whose interface is at one end: the
+// two end segments of the chain on two or more ranks (one of them with its blocks reversed), never
+// a middle segment (interface at both ends) and never one rank (no interface). The solves above
+// check their answers; this checks that those runs took the path meant.
+TEST(InterfaceSchur, TheEndSegmentsOfTheChainSolveBySplitSweeps) {
+  Newton3dCantilever c;
+  KSP ksp = solverFor(c.A, false);
+  PC pc;
+  PetscMPIInt size;
+  PetscBool sweeps;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetUp(ksp));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPGetPC(ksp, &pc));
+  PetscCallAbort(PETSC_COMM_WORLD, solvers::InterfaceSchurUsesSplitSweeps(pc, &sweeps));
+  int here = sweeps ? 1 : 0, ranks;
+  MPI_Allreduce(&here, &ranks, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  EXPECT_EQ(ranks, size == 1 ? 0 : 2);
+  PetscCallAbort(PETSC_COMM_WORLD, KSPView(ksp, PETSC_VIEWER_STDOUT_WORLD));
+  KSPDestroy(&ksp);
+}

@@ -15,13 +15,21 @@
 //     the interface size only (12-18 unknowns per cut between two ranks of a 3D cable), held on
 //     every rank and factored redundantly:
 //   solve A x = b:  y_I = A_II^{-1} b_I;  S x_G = b_G - A_GI y_I;  x_I = A_II^{-1} (b_I - A_IG x_G).
+// Each rank solves its own segment one of two ways (src/solvers/InterfaceSchurData.hpp):
+//   - split sweeps, when its interface is at one end of the segment (the two end segments of the
+//     chain; every rank of a two-rank run): one LU of the whole local block with the interface
+//     last (natural order, or the blocks reversed), and the interface solve between its forward
+//     and backward sweep, so an apply costs one local solve;
+//   - the interior solve otherwise (a middle segment): the LU of A_II (RCM), Z = A_II^{-1} A_IG
+//     kept, and an apply is one interior solve plus x_I -= Z x_G.
 // Why: a chain's matrix is banded and a one-rank banded LU is already near-optimal; MUMPS's
 // distributed nested dissection adds its overheads for almost no parallel work (on two ranks its
 // solves took 20 times the one-rank LU's, docs/performance.md).
 //
 // Like PETSc's own LU it does not pivot: for saddle-point matrices (Lagrange multipliers) use
-// MUMPS. The interior solver has the options prefix <pc prefix>schur_interior_ (default: preonly,
-// LU, RCM ordering). Works on one rank too (no interface: a plain LU).
+// MUMPS. The local solver has the options prefix <pc prefix>schur_interior_ (default: preonly,
+// LU, natural ordering for split sweeps, RCM otherwise; choosing another ordering or package there
+// turns the split sweeps off). Works on one rank too (no interface: a plain LU).
 #include <petscpc.h>
 
 namespace strand::solvers {
@@ -33,5 +41,8 @@ PetscErrorCode InterfaceSchurRegister();
 
 // Sizes after PCSetUp: interface unknowns (all ranks) and this rank's interior unknowns.
 PetscErrorCode InterfaceSchurGetSizes(PC pc, PetscInt* interface, PetscInt* localInterior);
+
+// After PCSetUp: whether this rank solves its segment by split sweeps (see above).
+PetscErrorCode InterfaceSchurUsesSplitSweeps(PC pc, PetscBool* sweeps);
 
 }  // namespace strand::solvers

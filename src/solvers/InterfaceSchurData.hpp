@@ -1,0 +1,74 @@
+#pragma once
+// The state of the PC strand_interface_schur (include/strand/solvers/InterfaceSchur.hpp), shared
+// by its two ways to solve a rank's own segment:
+//  - InterfaceSchur.cpp: the PC, the interface, and the *interior solve*: an LU of A_II (RCM
+//    ordering) and Z = A_II^{-1} A_IG, kept; an apply is one solve plus a pass over Z.
+//  - InterfaceSchurSweeps.cpp: the *split sweeps*, for a rank whose interface sits at one end of
+//    its segment (every rank of a two-rank chain, the two end ranks of a longer one): an LU of the
+//    whole local block with the interface last; an apply is one forward and one backward sweep with
+//    the interface solve in between, no Z.
+#include <petscksp.h>
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace strand::solvers::schur {
+
+using RowMajor = Eigen::Matrix<PetscScalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+struct SchurData {
+  bool built = false, failed = false;
+  PetscInt rows = 0;                // local rows
+  std::vector<PetscInt> interface;  // local rows on the interface, ascending
+  KSP interiorSolver = nullptr;     // the LU of this rank's segment (either way)
+  Vec w = nullptr, t = nullptr;     // local work vectors
+  Vec y = nullptr, u = nullptr;     // local wrappers that borrow an array
+  // the interface over all ranks: global rows (ascending), counts and offsets per rank
+  std::vector<PetscInt> gamma;
+  std::vector<PetscMPIInt> counts, offsets;
+  PetscInt ownOffset = 0;
+  Eigen::PartialPivLU<Eigen::MatrixXd> schur;
+
+  // Interior solve. A_II as the local diagonal block with the interface rows and columns replaced
+  // by the identity: no submatrix to extract, and its solution is zero on the interface rows.
+  Mat interiorBlock = nullptr;
+  // A_GI: for each own interface row, its entries in own interior columns (local column, value)
+  std::vector<std::vector<std::pair<PetscInt, PetscScalar>>> agi;
+  // Z = A_II^{-1} A_IG (own interface columns; zero rows on the interface): the interior's response
+  // to unit interface values, computed for S anyway; keeping it saves the second interior solve of
+  // an apply
+  Eigen::MatrixXd Z;
+
+  // Split sweeps. The whole local diagonal block in factor order: its blocks reversed when the
+  // interface is at the start, so that the interface always comes last; own interface row i is
+  // row factorRow[i] there.
+  bool sweeps = false, reversed = false, sweepsRefused = false;
+  PetscInt bs = 1;
+  Mat segment = nullptr;
+  std::vector<PetscInt> blockMap;  // block k of A_d's value array -> its block in segment's
+  std::vector<PetscInt> factorRow;
+  // With the interface last, the local block factors as L U, and this rank's part of the Schur
+  // complement, A_GG - A_GI A_II^{-1} A_IG (own interface rows and columns), is L_GG U_GG.
+  Eigen::MatrixXd Lgg, Ugg, S00;
+};
+
+// x_G (all ranks' interface) from this rank's interface right-hand sides g: gathered, then the
+// redundant dense solve with S or S^T. Collective.
+PetscErrorCode interfaceSolve(const SchurData& d, MPI_Comm comm, const std::vector<PetscScalar>& g, bool transpose,
+                              Eigen::VectorXd* x);
+
+// Split sweeps (InterfaceSchurSweeps.cpp). splitSweepsFit decides d->sweeps for this rank from the
+// interface found and the structure of A_d (the local diagonal block); buildSegment makes the
+// segment's structure once, fillSegment copies A_d's values into it at every factorization;
+// sweepsAvailable says whether the factor offers the split sweeps (PETSc's BAIJ LU in natural order
+// does); segmentSchur computes L_GG, U_GG and S00 from the factor.
+PetscErrorCode splitSweepsFit(SchurData* d, Mat Ad, PetscBool blocked);
+PetscErrorCode buildSegment(SchurData* d, Mat Ad);
+PetscErrorCode fillSegment(SchurData* d, Mat Ad);
+PetscErrorCode sweepsAvailable(SchurData* d, PetscBool* available);
+PetscErrorCode segmentSchur(SchurData* d);
+// x = A^{-1} b and x = A^{-T} b on this rank's rows (local arrays); collective.
+PetscErrorCode applySweeps(SchurData* d, MPI_Comm comm, const PetscScalar* b, PetscScalar* x);
+PetscErrorCode applyTransposeSweeps(SchurData* d, MPI_Comm comm, const PetscScalar* b, PetscScalar* x);
+
+}  // namespace strand::solvers::schur
