@@ -8,6 +8,7 @@
 #include "strand/solvers/AdamsBashforthMoulton.hpp"
 #include "strand/solvers/StrandBdf.hpp"
 #include "strand/solvers/GeneralizedAlpha.hpp"
+#include "strand/solvers/IsotropicMass.hpp"
 #include "strand/solvers/StaticSolver.hpp"
 
 namespace strand::solvers {
@@ -25,6 +26,13 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, dofs.createMatrix(&_J, "dyn_"));
   PetscCallAbort(comm, assembler.massMatrix(_M, false));
   PetscCallAbort(comm, MatCreateVecs(_M, nullptr, &_fext));
+  {  // only products with M from here on: the compact M_s (x) I when the mass is isotropic
+    Mat op;
+    PetscBool compact;
+    PetscCallAbort(comm, isotropicMassOperator(_M, &op, &compact));
+    PetscCallAbort(comm, MatDestroy(&_M));
+    _M = op;
+  }
   PetscCallAbort(comm, VecDuplicate(_fext, &_w1));
   PetscCallAbort(comm, VecDuplicate(_fext, &_w2));
   PetscCallAbort(comm, VecDuplicate(_fext, &_a0));

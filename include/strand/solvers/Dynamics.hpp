@@ -154,7 +154,8 @@ private:
   assembly::Assembler& _asm;
   model::DynamicsDesc _desc;
   TS _ts = nullptr;
-  Mat _M = nullptr, _J = nullptr;  // mass with supported columns kept; Newton matrix
+  // mass with supported columns kept, for products only (IsotropicMass.hpp); Newton matrix
+  Mat _M = nullptr, _J = nullptr;
   Vec _fext = nullptr, _w1 = nullptr, _w2 = nullptr;
   Vec _supported = nullptr;  // 1 on supported rows, 0 elsewhere
   Vec _reaction = nullptr;   // support force of the last residual evaluation (moving supports)

@@ -1,0 +1,110 @@
+// The compact mass operator M_s (x) I (IsotropicMass.hpp).
+#include "strand/solvers/IsotropicMass.hpp"
+
+#include <vector>
+
+namespace strand::solvers {
+
+namespace {
+
+// a column-major bs x bs block equal to v[0] I
+bool isMultipleOfIdentity(const PetscScalar* v, PetscInt bs) {
+  for (PetscInt j = 0; j < bs; ++j)
+    for (PetscInt i = 0; i < bs; ++i)
+      if (v[i + j * bs] != (i == j ? v[0] : 0.0)) return false;
+  return true;
+}
+
+// M_s by block row: global block columns, values, and the counts in own and other ranks' columns
+struct ScalarRows {
+  std::vector<std::vector<PetscInt>> cols;
+  std::vector<std::vector<PetscScalar>> vals;
+  std::vector<PetscInt> ownCount, otherCount;
+};
+
+// One sequential BAIJ part (the own-column block, or the off-process one with its global block
+// columns globalColumn): appends each block's multiple of I to its row; *isotropic = false at the
+// first block that is not one.
+PetscErrorCode readPart(Mat part, const PetscInt* globalColumn, PetscInt columnOffset, bool own, ScalarRows* rows,
+                        bool* isotropic) {
+  PetscInt n, bs;
+  const PetscInt *ia, *ja;
+  PetscBool done;
+  PetscScalar* a;
+  PetscFunctionBeginUser;
+  PetscCall(MatGetBlockSize(part, &bs));
+  PetscCall(MatGetRowIJ(part, 0, PETSC_FALSE, PETSC_TRUE, &n, &ia, &ja, &done));
+  PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "no block row structure of the mass matrix");
+  PetscCall(MatSeqBAIJGetArray(part, &a));
+  for (PetscInt r = 0; r < n && *isotropic; ++r)
+    for (PetscInt k = ia[r]; k < ia[r + 1]; ++k) {
+      const PetscScalar* block = a + k * bs * bs;
+      if (!isMultipleOfIdentity(block, bs)) {
+        *isotropic = false;
+        break;
+      }
+      rows->cols[r].push_back(globalColumn ? globalColumn[ja[k]] : columnOffset + ja[k]);
+      rows->vals[r].push_back(block[0]);
+      ++(own ? rows->ownCount : rows->otherCount)[r];
+    }
+  PetscCall(MatSeqBAIJRestoreArray(part, &a));
+  PetscCall(MatRestoreRowIJ(part, 0, PETSC_FALSE, PETSC_TRUE, &n, &ia, &ja, &done));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode isotropicMassOperator(Mat M, Mat* op, PetscBool* compact) {
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(M));
+  PetscBool mpibaij, seqbaij;
+  PetscInt bs, rstart, rend, cstart, cend;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(M), MATMPIBAIJ, &mpibaij));
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(M), MATSEQBAIJ, &seqbaij));
+  PetscCall(MatGetBlockSize(M, &bs));
+  PetscCall(MatGetOwnershipRange(M, &rstart, &rend));
+  PetscCall(MatGetOwnershipRangeColumn(M, &cstart, &cend));
+  const PetscInt blockRows = (rend - rstart) / bs;
+  ScalarRows rows;
+  rows.cols.resize(blockRows);
+  rows.vals.resize(blockRows);
+  rows.ownCount.assign(blockRows, 0);
+  rows.otherCount.assign(blockRows, 0);
+  bool isotropic = (mpibaij || seqbaij) && bs > 1;
+  if (mpibaij) {
+    Mat Ad, Ao;
+    const PetscInt* garray;
+    PetscCall(MatMPIBAIJGetSeqBAIJ(M, &Ad, &Ao, &garray));
+    PetscCall(readPart(Ad, nullptr, cstart / bs, true, &rows, &isotropic));
+    if (isotropic) PetscCall(readPart(Ao, garray, 0, false, &rows, &isotropic));
+  } else if (seqbaij && isotropic) {
+    PetscCall(readPart(M, nullptr, 0, true, &rows, &isotropic));
+  }
+  int here = isotropic ? 1 : 0, everywhere;
+  PetscCallMPI(MPI_Allreduce(&here, &everywhere, 1, MPI_INT, MPI_MIN, comm));
+  *compact = static_cast<PetscBool>(everywhere == 1);
+  if (!*compact) {
+    PetscCall(PetscObjectReference(reinterpret_cast<PetscObject>(M)));
+    *op = M;
+    PetscFunctionReturn(0);
+  }
+
+  Mat Ms;
+  PetscCall(MatCreate(comm, &Ms));
+  PetscCall(MatSetSizes(Ms, blockRows, (cend - cstart) / bs, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetType(Ms, MATAIJ));
+  PetscCall(MatSeqAIJSetPreallocation(Ms, 0, rows.ownCount.data()));
+  PetscCall(MatMPIAIJSetPreallocation(Ms, 0, rows.ownCount.data(), 0, rows.otherCount.data()));
+  for (PetscInt r = 0; r < blockRows; ++r) {
+    const PetscInt row = rstart / bs + r;
+    PetscCall(MatSetValues(Ms, 1, &row, static_cast<PetscInt>(rows.cols[r].size()), rows.cols[r].data(),
+                           rows.vals[r].data(), INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(Ms, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Ms, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateMAIJ(Ms, bs, op));
+  PetscCall(MatDestroy(&Ms));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace strand::solvers
