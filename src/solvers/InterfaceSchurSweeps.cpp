@@ -124,7 +124,8 @@ PetscErrorCode fillSegment(SchurData* d, Mat Ad) {
   const PetscInt bs2 = d->bs * d->bs;
   PetscCall(MatSeqBAIJGetArray(Ad, &from));
   PetscCall(MatSeqBAIJGetArray(d->segment, &to));
-  for (size_t k = 0; k < d->blockMap.size(); ++k) std::copy(from + bs2 * k, from + bs2 * (k + 1), to + bs2 * d->blockMap[k]);
+  for (size_t k = 0; k < d->blockMap.size(); ++k)
+    for (PetscInt j = 0; j < bs2; ++j) to[bs2 * d->blockMap[k] + j] = from[bs2 * k + j];
   PetscCall(MatSeqBAIJRestoreArray(d->segment, &to));
   PetscCall(MatSeqBAIJRestoreArray(Ad, &from));
   PetscCall(PetscObjectStateIncrease(reinterpret_cast<PetscObject>(d->segment)));  // new values: refactor
