@@ -123,7 +123,8 @@ PetscErrorCode createInteriorSolver(PC pc, SchurData* d) {
   PetscCall(KSPGetPC(d->interiorSolver, &lu));
   PetscCall(PCSetType(lu, PCLU));
   // RCM keeps the band (StaticSolver.cpp); the split sweeps need the natural order (PETSc's BAIJ LU
-  // has forward and backward sweeps only there), which splitSweepsFit checked to be banded
+  // has forward and backward sweeps only there, for bs <= 3), which splitSweepsFit checked to be
+  // banded
   PetscCall(PCFactorSetMatOrderingType(lu, d->sweeps ? MATORDERINGNATURAL : MATORDERINGRCM));
   PetscCall(KSPSetFromOptions(d->interiorSolver));
   PetscFunctionReturn(0);
@@ -245,8 +246,11 @@ PetscErrorCode setUp(PC pc) {
   }
   PetscCall(factorLocal(d, Ad));
   PetscBool available = PETSC_TRUE;
-  if (d->sweeps && !localFailure(d)) PetscCall(schur::sweepsAvailable(d, &available));
-  if (!available) {  // e.g. another ordering or solver package chosen for the local LU: no sweeps
+  if (d->sweeps && localFailure(d) == PC_NOERROR) PetscCall(schur::sweepsAvailable(d, &available));
+  // Local, no collective: the interior solve instead when the local solver offers no split sweeps
+  // (another PC, ordering or package chosen under schur_interior_), or when the whole segment has a
+  // zero pivot (the sweeps also pivot on the local Schur complement L_GG U_GG; A_II may still factor).
+  if (d->sweeps && (!available || localFailure(d) != PC_NOERROR)) {
     PetscCall(clearLocalSolve(d));
     d->sweeps = false;
     d->sweepsRefused = true;
@@ -382,7 +386,12 @@ PetscErrorCode applyTranspose(PC pc, Vec b, Vec x) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode reset(PC pc) { return clear(dataOf(pc)); }
+PetscErrorCode reset(PC pc) {
+  PetscFunctionBeginUser;
+  dataOf(pc)->sweepsRefused = false;  // options may have changed
+  PetscCall(clear(dataOf(pc)));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode destroy(PC pc) {
   PetscFunctionBeginUser;

@@ -60,8 +60,8 @@ PetscErrorCode interfaceSolve(const SchurData& d, MPI_Comm comm, const std::vect
 // Split sweeps (InterfaceSchurSweeps.cpp). splitSweepsFit decides d->sweeps for this rank from the
 // interface found and the structure of A_d (the local diagonal block); buildSegment makes the
 // segment's structure once, fillSegment copies A_d's values into it at every factorization;
-// sweepsAvailable says whether the factor offers the split sweeps (PETSc's BAIJ LU in natural order
-// does); segmentSchur computes L_GG, U_GG and S00 from the factor.
+// sweepsAvailable says whether the local solver offers the split sweeps (PETSc's own BAIJ LU in
+// natural order does, for bs <= 3); segmentSchur computes L_GG, U_GG and S00 from the factor.
 PetscErrorCode splitSweepsFit(SchurData* d, Mat Ad, PetscBool blocked);
 PetscErrorCode buildSegment(SchurData* d, Mat Ad);
 PetscErrorCode fillSegment(SchurData* d, Mat Ad);

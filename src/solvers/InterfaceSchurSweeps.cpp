@@ -20,6 +20,7 @@
 #include <petsc/private/petscimpl.h>
 
 #include <algorithm>
+#include <string>
 
 #include "solvers/InterfaceSchurData.hpp"
 
@@ -45,25 +46,26 @@ void reorder(const SchurData& d, const PetscScalar* from, PetscScalar* to) {
     for (PetscInt j = 0; j < bs; ++j) to[last - r + j] = from[r + j];
 }
 
-Mat factorOf(const SchurData& d) {
+PetscErrorCode factorOf(const SchurData& d, Mat* F) {
   PC lu;
-  Mat F = nullptr;
-  PetscCallAbort(PETSC_COMM_SELF, KSPGetPC(d.interiorSolver, &lu));
-  PetscCallAbort(PETSC_COMM_SELF, PCFactorGetMatrix(lu, &F));
-  return F;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(d.interiorSolver, &lu));
+  PetscCall(PCFactorGetMatrix(lu, F));
+  PetscFunctionReturn(0);
 }
 
 }  // namespace
 
-// Split sweeps when the matrix is blocked, this rank has an interface, the interface is the first
-// or the last blocks of the segment, and the natural order is banded: the envelope (per row, the
-// distance from the diagonal to the first and the last entry) at most twice the number of blocks
-// held, so the natural-order LU fills almost nothing (a chain: 5 against 6 blocks per row).
+// Split sweeps when the matrix is blocked (bs <= 3), this rank has an interface, the interface is
+// the first or the last blocks of the segment, and the natural order is banded: the envelope (per
+// row, the distance from the diagonal to the first and the last entry) at most twice the number of
+// blocks held, so the natural-order LU fills almost nothing (a chain: 5 against 6 blocks per row).
 PetscErrorCode splitSweepsFit(SchurData* d, Mat Ad, PetscBool blocked) {
   PetscFunctionBeginUser;
   d->sweeps = false;
   if (!blocked || d->interface.empty() || d->sweepsRefused) PetscFunctionReturn(0);
   PetscCall(MatGetBlockSize(Ad, &d->bs));
+  if (d->bs > 3) PetscFunctionReturn(0);  // PETSc's BAIJ LU has split sweeps for bs 1-3 only
   const PetscInt blocks = d->rows / d->bs;
   const PetscInt interfaceBlocks = static_cast<PetscInt>(d->interface.size()) / d->bs;
   // d->interface holds whole blocks, ascending
@@ -78,7 +80,8 @@ PetscErrorCode splitSweepsFit(SchurData* d, Mat Ad, PetscBool blocked) {
   PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "no block row structure of the local block");
   PetscInt envelope = 0;
   for (PetscInt i = 0; i < n; ++i)
-    if (ia[i + 1] > ia[i]) envelope += (i - ja[ia[i]]) + (ja[ia[i + 1] - 1] - i);
+    if (ia[i + 1] > ia[i])
+      envelope += std::max<PetscInt>(0, i - ja[ia[i]]) + std::max<PetscInt>(0, ja[ia[i + 1] - 1] - i);
   const PetscInt held = ia[n];
   PetscCall(MatRestoreRowIJ(Ad, 0, PETSC_FALSE, PETSC_TRUE, &n, &ia, &ja, &done));
   if (envelope > 2 * held) PetscFunctionReturn(0);
@@ -132,10 +135,21 @@ PetscErrorCode fillSegment(SchurData* d, Mat Ad) {
   PetscFunctionReturn(0);
 }
 
+// PETSc's own LU (any other PC or package may lack the sweeps, or offer stubs: SBAIJ's in-place
+// Cholesky has a forward sweep that only errors), and its factor has both sweeps (natural order).
 PetscErrorCode sweepsAvailable(SchurData* d, PetscBool* available) {
-  PetscBool forward, backward;
+  PC lu;
+  PetscBool isLu, forward, backward;
+  MatSolverType package;
   PetscFunctionBeginUser;
-  Mat F = factorOf(*d);
+  *available = PETSC_FALSE;
+  PetscCall(KSPGetPC(d->interiorSolver, &lu));
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(lu), PCLU, &isLu));
+  if (!isLu) PetscFunctionReturn(0);
+  PetscCall(PCFactorGetMatSolverType(lu, &package));
+  if (package && std::string(package) != MATSOLVERPETSC) PetscFunctionReturn(0);
+  Mat F;
+  PetscCall(factorOf(*d, &F));
   PetscCall(MatHasOperation(F, MATOP_FORWARD_SOLVE, &forward));
   PetscCall(MatHasOperation(F, MATOP_BACKWARD_SOLVE, &backward));
   *available = static_cast<PetscBool>(forward && backward);
@@ -146,7 +160,8 @@ PetscErrorCode sweepsAvailable(SchurData* d, PetscBool* available) {
 // unit vector on interface row j (L and U are triangular and the interface is last); S00 = L_GG U_GG.
 PetscErrorCode segmentSchur(SchurData* d) {
   PetscFunctionBeginUser;
-  Mat F = factorOf(*d);
+  Mat F;
+  PetscCall(factorOf(*d, &F));
   const PetscInt m = static_cast<PetscInt>(d->interface.size());
   Eigen::MatrixXd Linv(m, m), Uinv(m, m);
   for (PetscInt j = 0; j < m; ++j) {
@@ -170,9 +185,10 @@ PetscErrorCode segmentSchur(SchurData* d) {
 
 PetscErrorCode applySweeps(SchurData* d, MPI_Comm comm, const PetscScalar* b, PetscScalar* x) {
   PetscFunctionBeginUser;
-  Mat F = factorOf(*d);
+  Mat F;
+  PetscCall(factorOf(*d, &F));
   const PetscInt m = static_cast<PetscInt>(d->interface.size());
-  Vec in = d->u, out = d->u;  // in the natural order the sweeps read b and write x in place
+  Vec in = d->u, out = d->u;  // in the natural order the sweeps read b's and write x's arrays
   if (d->reversed) {
     PetscScalar* w;
     PetscCall(VecGetArray(d->w, &w));
@@ -216,7 +232,8 @@ PetscErrorCode applySweeps(SchurData* d, MPI_Comm comm, const PetscScalar* b, Pe
 //   A_loc^T v = [b_I; S00^T (x_G - u_G)]  gives  v_G = x_G and v_I = A_II^{-T} (b_I - A_GI^T x_G).
 PetscErrorCode applyTransposeSweeps(SchurData* d, MPI_Comm comm, const PetscScalar* b, PetscScalar* x) {
   PetscFunctionBeginUser;
-  Mat F = factorOf(*d);
+  Mat F;
+  PetscCall(factorOf(*d, &F));
   const PetscInt m = static_cast<PetscInt>(d->interface.size());
   PetscScalar* w;
   const PetscScalar* t;

@@ -43,6 +43,7 @@ PetscErrorCode readPart(Mat part, const PetscInt* globalColumn, PetscInt columnO
         *isotropic = false;
         break;
       }
+      if (block[0] == 0.0) continue;  // a zero block (e.g. of multipliers): no entry in M_s
       rows->cols[r].push_back(globalColumn ? globalColumn[ja[k]] : columnOffset + ja[k]);
       rows->vals[r].push_back(block[0]);
       ++(own ? rows->ownCount : rows->otherCount)[r];

@@ -1,6 +1,9 @@
 // requirement: the parallel default direct solver (PC strand_interface_schur, InterfaceSchur.hpp)
 // solves A x = b and A^T x = b exactly, on any number of ranks, for the Newton matrices of chains,
-// and a zero pivot on one rank stops the solve on all of them with a PC failure (no hang).
+// and a zero pivot on one rank stops the solve on all of them with a PC failure (no hang). Both
+// ways a rank solves its segment are exercised (split sweeps on the end ranks, the interior solve
+// in the middle at -n 3 and under another local ordering), with blocks of 3 (3D) and 2 (2D), and
+// after a refactorization with new values.
 // Source of the bound: a direct solve by Gaussian elimination is backward stable, the computed x
 // solves (A + dA) x = b with |dA| <= gamma_n |L| |U| (Higham, "Accuracy and Stability of Numerical
 // Algorithms", 2nd ed. 2002, Thm. 9.3); for these banded matrices without growth the normwise
@@ -22,14 +25,16 @@ using namespace strand::testing;
 
 namespace {
 
-// The generalized-alpha Newton matrix K + c_V D + c_A M of the 3D steel cantilever (60 elements,
-// h = 1 ms: c_A = 1 / (beta h^2)) at a bent state, its columns scaled by 1 + 0.3 sin(i) so that
-// A != A^T (structure unchanged).
-struct Newton3dCantilever {
-  solvers::Problem problem{PETSC_COMM_WORLD, steelCantileverUnderGravity(60)};
+// The generalized-alpha Newton matrix K + c_V D + c_A M of a cantilever of 60 elements (3D: the
+// steel cantilever, blocks of 3; 2D: blocks of 2) at h = 1 ms (c_A = 1 / (beta h^2)) at a bent
+// state, its columns scaled by 1 + 0.3 sin(i) so that A != A^T (structure unchanged).
+model::SceneDescription cantileverOf(int dim) { return dim == 3 ? steelCantileverUnderGravity(60) : cantilever(2, 60); }
+
+struct NewtonCantilever {
+  solvers::Problem problem;
   Mat A = nullptr;
   Vec X = nullptr, V = nullptr;
-  Newton3dCantilever() {
+  explicit NewtonCantilever(int dim = 3) : problem(PETSC_COMM_WORLD, cantileverOf(dim)) {
     MPI_Comm comm = PETSC_COMM_WORLD;
     PetscCallAbort(comm, problem.createInitialState(&X, &V));
     PetscInt lo, hi;
@@ -47,7 +52,7 @@ struct Newton3dCantilever {
     PetscCallAbort(comm, MatDiagonalScale(A, nullptr, scale));
     PetscCallAbort(comm, VecDestroy(&scale));
   }
-  ~Newton3dCantilever() {
+  ~NewtonCantilever() {
     MatDestroy(&A);
     VecDestroy(&X);
     VecDestroy(&V);
@@ -97,29 +102,27 @@ double diagonalSpread(Mat A) {
   return big / small;
 }
 
-}  // namespace
 
-TEST(InterfaceSchur, SolvesTheNewtonMatrixOfAChainLikeMumps) {
-  Newton3dCantilever c;
+// A x = b and A^T x = b by `schur` (set up on A) against MUMPS: the backward and the forward error.
+void expectExactSolves(KSP schur, Mat A, const char* label) {
   Vec b, x, ref;
-  PetscCallAbort(PETSC_COMM_WORLD, MatCreateVecs(c.A, &x, &b));
+  PetscCallAbort(PETSC_COMM_WORLD, MatCreateVecs(A, &x, &b));
   PetscCallAbort(PETSC_COMM_WORLD, VecDuplicate(x, &ref));
   PetscCallAbort(PETSC_COMM_WORLD, VecSetRandom(b, nullptr));
-  const double kappaBound = 10.0 * diagonalSpread(c.A);
+  const double kappaBound = 10.0 * diagonalSpread(A);
   for (bool transpose : {false, true}) {
-    KSP schur = solverFor(c.A, false), mumps = solverFor(c.A, true);
+    KSP mumps = solverFor(A, true);
     PetscCallAbort(PETSC_COMM_WORLD, transpose ? KSPSolveTranspose(schur, b, x) : KSPSolve(schur, b, x));
     PetscCallAbort(PETSC_COMM_WORLD, transpose ? KSPSolveTranspose(mumps, b, ref) : KSPSolve(mumps, b, ref));
-    const double eta = backwardError(c.A, x, b, transpose);
+    const double eta = backwardError(A, x, b, transpose);
     PetscReal diff, norm;
     PetscCallAbort(PETSC_COMM_WORLD, VecNorm(ref, NORM_INFINITY, &norm));
     PetscCallAbort(PETSC_COMM_WORLD, VecAXPY(ref, -1.0, x));
     PetscCallAbort(PETSC_COMM_WORLD, VecNorm(ref, NORM_INFINITY, &diff));
-    PetscPrintf(PETSC_COMM_WORLD, "transpose %d: backward error %.3e, |x - x_mumps| / |x| = %.3e (bound %.3e)\n",
-                static_cast<int>(transpose), eta, diff / norm, kappaBound * 1e-14);
-    EXPECT_LT(eta, 1e-14);
-    EXPECT_LT(diff / norm, kappaBound * 1e-14);
-    KSPDestroy(&schur);
+    PetscPrintf(PETSC_COMM_WORLD, "%s, transpose %d: backward error %.3e, |x - x_mumps| / |x| = %.3e (bound %.3e)\n",
+                label, static_cast<int>(transpose), eta, diff / norm, kappaBound * 1e-14);
+    EXPECT_LT(eta, 1e-14) << label;
+    EXPECT_LT(diff / norm, kappaBound * 1e-14) << label;
     KSPDestroy(&mumps);
   }
   VecDestroy(&b);
@@ -127,12 +130,53 @@ TEST(InterfaceSchur, SolvesTheNewtonMatrixOfAChainLikeMumps) {
   VecDestroy(&ref);
 }
 
+}  // namespace
+
+TEST(InterfaceSchur, SolvesTheNewtonMatrixOfAChainLikeMumps) {
+  for (int dim : {3, 2}) {
+    NewtonCantilever c(dim);
+    KSP schur = solverFor(c.A, false);
+    expectExactSolves(schur, c.A, dim == 3 ? "3D (blocks of 3)" : "2D (blocks of 2)");
+    KSPDestroy(&schur);
+  }
+}
+
+// New values in the same structure (a Newton matrix rebuilt): the set-up refills and refactors
+// (split sweeps: the segment's copy and its state) and solves exactly again.
+TEST(InterfaceSchur, RefactorsWhenTheValuesChange) {
+  NewtonCantilever c;
+  KSP schur = solverFor(c.A, false);
+  expectExactSolves(schur, c.A, "first values");
+  PetscCallAbort(PETSC_COMM_WORLD, MatShift(c.A, 3.0e6));  // a larger mass shift
+  PetscCallAbort(PETSC_COMM_WORLD, MatScale(c.A, 0.5));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetOperators(schur, c.A, c.A));
+  expectExactSolves(schur, c.A, "new values");
+  KSPDestroy(&schur);
+}
+
+// Another ordering for the local LU has no split sweeps in PETSc: every rank then solves by the
+// interior solve, exactly.
+TEST(InterfaceSchur, AnotherLocalOrderingFallsBackToTheInteriorSolve) {
+  NewtonCantilever c;
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsSetValue(nullptr, "-schur_interior_pc_factor_mat_ordering_type", "rcm"));
+  KSP schur = solverFor(c.A, false);
+  PC pc;
+  PetscBool sweeps;
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetUp(schur));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPGetPC(schur, &pc));
+  PetscCallAbort(PETSC_COMM_WORLD, solvers::InterfaceSchurUsesSplitSweeps(pc, &sweeps));
+  EXPECT_FALSE(sweeps);
+  expectExactSolves(schur, c.A, "RCM ordering");
+  KSPDestroy(&schur);
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsClearValue(nullptr, "-schur_interior_pc_factor_mat_ordering_type"));
+}
+
 // 61 nodes of two 3-unknown blocks (r, r'), partitioned by METIS by block: a cut between two nodes
 // is spanned by one element, whose two nodes are the interface (12 unknowns); a cut between a
 // node's r and r' blocks by the two elements at that node (three nodes, 18 unknowns). Every other
 // row is interior.
 TEST(InterfaceSchur, TheInterfaceIsTheTwoNodesOfEachCutElement) {
-  Newton3dCantilever c;
+  NewtonCantilever c;
   KSP ksp = solverFor(c.A, false);
   PC pc;
   PetscMPIInt size;
@@ -152,7 +196,7 @@ TEST(InterfaceSchur, TheInterfaceIsTheTwoNodesOfEachCutElement) {
 // A zero row in rank 0's interior (the middle of its segment): PETSc's LU finds an exact zero pivot there; every rank must
 // return from the solve (the interface solve is collective) with KSP_DIVERGED_PC_FAILED.
 TEST(InterfaceSchur, AZeroPivotOnOneRankFailsTheSolveOnAll) {
-  Newton3dCantilever c;
+  NewtonCantilever c;
   PetscInt lo, hi;
   PetscCallAbort(PETSC_COMM_WORLD, MatGetOwnershipRange(c.A, &lo, &hi));
   PetscMPIInt rank;
@@ -177,7 +221,7 @@ TEST(InterfaceSchur, AZeroPivotOnOneRankFailsTheSolveOnAll) {
 // a middle segment (interface at both ends) and never one rank (no interface). The solves above
 // check their answers; this checks that those runs took the path meant.
 TEST(InterfaceSchur, TheEndSegmentsOfTheChainSolveBySplitSweeps) {
-  Newton3dCantilever c;
+  NewtonCantilever c;
   KSP ksp = solverFor(c.A, false);
   PC pc;
   PetscMPIInt size;
@@ -189,6 +233,5 @@ TEST(InterfaceSchur, TheEndSegmentsOfTheChainSolveBySplitSweeps) {
   int here = sweeps ? 1 : 0, ranks;
   MPI_Allreduce(&here, &ranks, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
   EXPECT_EQ(ranks, size == 1 ? 0 : 2);
-  PetscCallAbort(PETSC_COMM_WORLD, KSPView(ksp, PETSC_VIEWER_STDOUT_WORLD));
   KSPDestroy(&ksp);
 }

@@ -28,8 +28,9 @@
 //
 // Like PETSc's own LU it does not pivot: for saddle-point matrices (Lagrange multipliers) use
 // MUMPS. The local solver has the options prefix <pc prefix>schur_interior_ (default: preonly,
-// LU, natural ordering for split sweeps, RCM otherwise; choosing another ordering or package there
-// turns the split sweeps off). Works on one rank too (no interface: a plain LU).
+// LU, natural ordering for split sweeps, RCM otherwise; another ordering, PC or package there turns
+// the split sweeps off, as do blocks larger than 3). Works on one rank too (no interface: a plain
+// LU).
 #include <petscpc.h>
 
 namespace strand::solvers {
