@@ -441,24 +441,35 @@ PetscErrorCode InterfaceSchurRegister() {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode InterfaceSchurGetSizes(PC pc, PetscInt* interface, PetscInt* localInterior) {
+namespace {
+
+// the data of a PC that must be strand_interface_schur
+PetscErrorCode checkedData(PC pc, const SchurData** d) {
   PetscBool match;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), kPcInterfaceSchur, &match));
   PetscCheck(match, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), PETSC_ERR_ARG_WRONG, "PC is not %s",
              kPcInterfaceSchur);
-  *interface = static_cast<PetscInt>(dataOf(pc)->gamma.size());
-  *localInterior = dataOf(pc)->rows - static_cast<PetscInt>(dataOf(pc)->interface.size());
+  *d = dataOf(pc);
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+PetscErrorCode InterfaceSchurGetSizes(PC pc, PetscInt* interface, PetscInt* localInterior) {
+  const SchurData* d = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(checkedData(pc, &d));
+  *interface = static_cast<PetscInt>(d->gamma.size());
+  *localInterior = d->rows - static_cast<PetscInt>(d->interface.size());
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode InterfaceSchurUsesSplitSweeps(PC pc, PetscBool* sweeps) {
-  PetscBool match;
+  const SchurData* d = nullptr;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), kPcInterfaceSchur, &match));
-  PetscCheck(match, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), PETSC_ERR_ARG_WRONG, "PC is not %s",
-             kPcInterfaceSchur);
-  *sweeps = static_cast<PetscBool>(dataOf(pc)->sweeps);
+  PetscCall(checkedData(pc, &d));
+  *sweeps = static_cast<PetscBool>(d->sweeps);
   PetscFunctionReturn(0);
 }
 

@@ -46,6 +46,27 @@ void reorder(const SchurData& d, const PetscScalar* from, PetscScalar* to) {
     for (PetscInt j = 0; j < bs; ++j) to[last - r + j] = from[r + j];
 }
 
+// w = b in factor order, its interface rows then set to `interface` when given
+PetscErrorCode toFactorOrder(const SchurData& d, const PetscScalar* b, const Eigen::VectorXd* interface, Vec w) {
+  PetscScalar* a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(w, &a));
+  reorder(d, b, a);
+  if (interface)
+    for (size_t i = 0; i < d.factorRow.size(); ++i) a[d.factorRow[i]] = (*interface)[static_cast<Eigen::Index>(i)];
+  PetscCall(VecRestoreArray(w, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode fromFactorOrder(const SchurData& d, Vec t, PetscScalar* x) {
+  const PetscScalar* a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(t, &a));
+  reorder(d, a, x);
+  PetscCall(VecRestoreArrayRead(t, &a));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode factorOf(const SchurData& d, Mat* F) {
   PC lu;
   PetscFunctionBeginUser;
@@ -190,10 +211,7 @@ PetscErrorCode applySweeps(SchurData* d, MPI_Comm comm, const PetscScalar* b, Pe
   const PetscInt m = static_cast<PetscInt>(d->interface.size());
   Vec in = d->u, out = d->u;  // in the natural order the sweeps read b's and write x's arrays
   if (d->reversed) {
-    PetscScalar* w;
-    PetscCall(VecGetArray(d->w, &w));
-    reorder(*d, b, w);
-    PetscCall(VecRestoreArray(d->w, &w));
+    PetscCall(toFactorOrder(*d, b, nullptr, d->w));
     in = out = d->w;
   } else {
     PetscCall(VecPlaceArray(d->u, b));
@@ -214,14 +232,8 @@ PetscErrorCode applySweeps(SchurData* d, MPI_Comm comm, const PetscScalar* b, Pe
 
   if (!d->reversed) PetscCall(VecPlaceArray(d->u, x));
   PetscCall(MatBackwardSolve(F, d->t, out));
-  if (d->reversed) {
-    const PetscScalar* w;
-    PetscCall(VecGetArrayRead(d->w, &w));
-    reorder(*d, w, x);
-    PetscCall(VecRestoreArrayRead(d->w, &w));
-  } else {
-    PetscCall(VecResetArray(d->u));
-  }
+  if (d->reversed) PetscCall(fromFactorOrder(*d, d->w, x));
+  else PetscCall(VecResetArray(d->u));
   PetscFunctionReturn(0);
 }
 
@@ -235,14 +247,11 @@ PetscErrorCode applyTransposeSweeps(SchurData* d, MPI_Comm comm, const PetscScal
   Mat F;
   PetscCall(factorOf(*d, &F));
   const PetscInt m = static_cast<PetscInt>(d->interface.size());
-  PetscScalar* w;
   const PetscScalar* t;
   Eigen::VectorXd uG(m), bG(m), xG;
   for (PetscInt i = 0; i < m; ++i) bG[i] = b[d->interface[i]];
-  PetscCall(VecGetArray(d->w, &w));
-  reorder(*d, b, w);
-  for (PetscInt i = 0; i < m; ++i) w[d->factorRow[i]] = 0.0;
-  PetscCall(VecRestoreArray(d->w, &w));
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(m);
+  PetscCall(toFactorOrder(*d, b, &zero, d->w));
   PetscCall(MatSolveTranspose(F, d->w, d->t));
   PetscCall(VecGetArrayRead(d->t, &t));
   for (PetscInt i = 0; i < m; ++i) uG[i] = t[d->factorRow[i]];
@@ -251,14 +260,9 @@ PetscErrorCode applyTransposeSweeps(SchurData* d, MPI_Comm comm, const PetscScal
   PetscCall(interfaceSolve(*d, comm, std::vector<PetscScalar>(gOwn.data(), gOwn.data() + m), true, &xG));
   const Eigen::VectorXd xOwn = xG.segment(d->ownOffset, m), c = d->S00.transpose() * (xOwn - uG);
 
-  PetscCall(VecGetArray(d->w, &w));
-  reorder(*d, b, w);
-  for (PetscInt i = 0; i < m; ++i) w[d->factorRow[i]] = c[i];
-  PetscCall(VecRestoreArray(d->w, &w));
+  PetscCall(toFactorOrder(*d, b, &c, d->w));
   PetscCall(MatSolveTranspose(F, d->w, d->t));
-  PetscCall(VecGetArrayRead(d->t, &t));
-  reorder(*d, t, x);
-  PetscCall(VecRestoreArrayRead(d->t, &t));
+  PetscCall(fromFactorOrder(*d, d->t, x));
   for (PetscInt i = 0; i < m; ++i) x[d->interface[i]] = xOwn[i];
   PetscFunctionReturn(0);
 }
