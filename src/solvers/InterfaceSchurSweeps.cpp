@@ -156,8 +156,8 @@ PetscErrorCode fillSegment(SchurData* d, Mat Ad) {
   PetscFunctionReturn(0);
 }
 
-// PETSc's own LU (any other PC or package may lack the sweeps, or offer stubs: SBAIJ's in-place
-// Cholesky has a forward sweep that only errors), and its factor has both sweeps (natural order).
+// PETSc's own LU (another PC or package may lack the sweeps, or register sweeps that only raise an
+// error, as SBAIJ's in-place Cholesky does), and its factor has both sweeps (natural order).
 PetscErrorCode sweepsAvailable(SchurData* d, PetscBool* available) {
   PC lu;
   PetscBool isLu, forward, backward;
