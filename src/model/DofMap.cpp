@@ -78,6 +78,35 @@ std::vector<idx_t> metisPartition(const Model& model, const std::vector<PetscInt
   return part;
 }
 
+// Blocks that share an element or a coupling with a block of another part: the rows that the
+// parallel direct solve calls the interface (InterfaceSchur.hpp).
+std::vector<char> interfaceBlocks(const std::vector<PetscInt>& gptr, const std::vector<int>& gblk,
+                                  const std::vector<int>& part) {
+  std::vector<char> on(part.size(), 0);
+  for (size_t g = 0; g + 1 < gptr.size(); ++g) {
+    bool cut = false;
+    for (PetscInt a = gptr[g]; a < gptr[g + 1]; ++a) cut = cut || part[gblk[a]] != part[gblk[gptr[g]]];
+    if (cut)
+      for (PetscInt a = gptr[g]; a < gptr[g + 1]; ++a) on[gblk[a]] = 1;
+  }
+  return on;
+}
+
+// A part whose interface blocks are exactly its first blocks in model order, and not its last: an
+// end segment of a chain cut at its start. Numbered in reverse, its interface comes last, and the
+// parallel direct solve factors its local block as it is (the split sweeps of
+// InterfaceSchurSweeps.cpp) instead of a reversed copy at every factorization and solve. Reversal
+// keeps the band of the local block: |i - j| is unchanged.
+bool interfaceIsPrefixOnly(const std::vector<int>& members, const std::vector<char>& onInterface) {
+  size_t count = 0;
+  for (int b : members) count += onInterface[b];
+  if (count == 0 || count == members.size()) return false;
+  const auto interface = [&](int b) { return onInterface[b] != 0; };
+  const bool prefix = std::all_of(members.begin(), members.begin() + count, interface);
+  const bool suffix = std::all_of(members.end() - count, members.end(), interface);
+  return prefix && !suffix;
+}
+
 }  // namespace
 
 DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()), _nGlobal(model.numBlocks()) {
@@ -97,14 +126,20 @@ DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()
     }
     MPI_Bcast(part.data(), nb, MPI_INT, 0, comm);
   }
-  // 2. contiguous renumbering: blocks of part 0 first, each part in model order
+  // 2. contiguous renumbering: blocks of part 0 first, each part in model order or reversed
   std::vector<PetscInt> offset(size + 1, 0);
   for (int b = 0; b < nb; ++b) offset[part[b] + 1]++;
   for (int p = 0; p < size; ++p) offset[p + 1] += offset[p];
   _begin = offset[rank];
   _end = offset[rank + 1];
   _global.resize(nb);
-  for (int b = 0; b < nb; ++b) _global[b] = offset[part[b]]++;
+  std::vector<std::vector<int>> members(size);
+  for (int b = 0; b < nb; ++b) members[part[b]].push_back(b);
+  const std::vector<char> onInterface = interfaceBlocks(gptr, gblk, part);
+  for (int p = 0; p < size; ++p) {
+    if (interfaceIsPrefixOnly(members[p], onInterface)) std::reverse(members[p].begin(), members[p].end());
+    for (size_t i = 0; i < members[p].size(); ++i) _global[members[p][i]] = offset[p] + static_cast<PetscInt>(i);
+  }
   // 3. local elements: those whose first block this rank owns; their ghosts
   const auto& elements = model.elements();
   for (int e = 0; e < static_cast<int>(elements.size()); ++e) {

@@ -185,13 +185,16 @@ PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar
   PetscFunctionReturn(0);
 }
 
+// The matrix this rank factors: A_II (interior solve), A_d itself or its reversed copy (split sweeps).
+Mat localMatrix(const SchurData* d, Mat Ad) { return !d->sweeps ? d->interiorBlock : d->reversed ? d->segment : Ad; }
+
 // The local matrix, solver and work vectors of this rank's way to solve its segment.
 PetscErrorCode prepareLocalSolve(PC pc, SchurData* d, Mat Ad) {
   PetscFunctionBeginUser;
   PetscCall(createInteriorSolver(pc, d));
-  if (d->sweeps) PetscCall(schur::buildSegment(d, Ad));
-  else PetscCall(MatDuplicate(Ad, MAT_DO_NOT_COPY_VALUES, &d->interiorBlock));
-  PetscCall(MatCreateVecs(d->sweeps ? d->segment : d->interiorBlock, &d->w, &d->t));
+  if (!d->sweeps) PetscCall(MatDuplicate(Ad, MAT_DO_NOT_COPY_VALUES, &d->interiorBlock));
+  else if (d->reversed) PetscCall(schur::buildSegment(d, Ad));
+  PetscCall(MatCreateVecs(localMatrix(d, Ad), &d->w, &d->t));
   PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, d->rows, nullptr, &d->y));
   PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, d->rows, nullptr, &d->u));
   PetscFunctionReturn(0);
@@ -206,12 +209,13 @@ PetscErrorCode clearLocalSolve(SchurData* d) {
   PetscFunctionReturn(0);
 }
 
-// Copies A_d's values into the local matrix and factors it (local; a failure is read after).
+// Copies A_d's values into the local matrix when it is a copy, and factors it (local; a failure is
+// read after). A_d itself is refactored when its values changed since the last factorization.
 PetscErrorCode factorLocal(SchurData* d, Mat Ad) {
   PetscFunctionBeginUser;
-  Mat local = d->sweeps ? d->segment : d->interiorBlock;
+  Mat local = localMatrix(d, Ad);
   if (d->sweeps) {
-    PetscCall(schur::fillSegment(d, Ad));
+    if (d->reversed) PetscCall(schur::fillSegment(d, Ad));
   } else {
     PetscCall(MatCopy(Ad, d->interiorBlock, SAME_NONZERO_PATTERN));
     PetscCall(MatZeroRowsColumns(d->interiorBlock, static_cast<PetscInt>(d->interface.size()), d->interface.data(),
@@ -465,11 +469,12 @@ PetscErrorCode InterfaceSchurGetSizes(PC pc, PetscInt* interface, PetscInt* loca
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode InterfaceSchurUsesSplitSweeps(PC pc, PetscBool* sweeps) {
+PetscErrorCode InterfaceSchurGetSegmentSolve(PC pc, SegmentSolve* how) {
   const SchurData* d = nullptr;
   PetscFunctionBeginUser;
   PetscCall(checkedData(pc, &d));
-  *sweeps = static_cast<PetscBool>(d->sweeps);
+  *how = !d->sweeps ? SegmentSolve::InteriorSolve : d->reversed ? SegmentSolve::ReversedSplitSweeps
+                                                                 : SegmentSolve::SplitSweeps;
   PetscFunctionReturn(0);
 }
 

@@ -39,9 +39,10 @@ struct SchurData {
   // an apply
   Eigen::MatrixXd Z;
 
-  // Split sweeps. The whole local diagonal block in factor order: its blocks reversed when the
-  // interface is at the start, so that the interface always comes last; own interface row i is
-  // row factorRow[i] there.
+  // Split sweeps. The whole local diagonal block A_d in factor order, the interface last: A_d itself
+  // when the interface is at the end (DofMap numbers the end segments of a chain so), else a copy
+  // with its blocks reversed, `segment`, refilled at every factorization. Own interface row i is row
+  // factorRow[i] in factor order.
   bool sweeps = false, reversed = false, sweepsRefused = false;
   PetscInt bs = 1;
   Mat segment = nullptr;
@@ -58,8 +59,9 @@ PetscErrorCode interfaceSolve(const SchurData& d, MPI_Comm comm, const std::vect
                               Eigen::VectorXd* x);
 
 // Split sweeps (InterfaceSchurSweeps.cpp). splitSweepsFit decides d->sweeps for this rank from the
-// interface found and the structure of A_d (the local diagonal block); buildSegment makes the
-// segment's structure once, fillSegment copies A_d's values into it at every factorization;
+// interface found and the structure of A_d (the local diagonal block); when reversed, buildSegment
+// makes the segment's structure once and fillSegment copies A_d's values into it at every
+// factorization;
 // sweepsAvailable says whether the local solver offers the split sweeps (PETSc's own BAIJ LU in
 // natural order does, for bs <= 3); segmentSchur computes L_GG, U_GG and S00 from the factor.
 PetscErrorCode splitSweepsFit(SchurData* d, Mat Ad, PetscBool blocked);

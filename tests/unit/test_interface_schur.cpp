@@ -1,9 +1,9 @@
 // requirement: the parallel default direct solver (PC strand_interface_schur, InterfaceSchur.hpp)
 // solves A x = b and A^T x = b exactly, on any number of ranks, for the Newton matrices of chains,
 // and a zero pivot on one rank stops the solve on all of them with a PC failure (no hang). Both
-// ways a rank solves its segment are exercised (split sweeps on the end ranks, the interior solve
-// in the middle at -n 3 and under another local ordering), with blocks of 3 (3D) and 2 (2D), and
-// after a refactorization with new values.
+// ways a rank solves its segment are exercised (split sweeps on the end ranks, on the local block
+// or on a reversed copy; the interior solve in the middle at -n 3 and under another local
+// ordering), with blocks of 3 (3D) and 2 (2D), and after a refactorization with new values.
 // Source of the bound: a direct solve by Gaussian elimination is backward stable, the computed x
 // solves (A + dA) x = b with |dA| <= gamma_n |L| |U| (Higham, "Accuracy and Stability of Numerical
 // Algorithms", 2nd ed. 2002, Thm. 9.3); for these banded matrices without growth the normwise
@@ -14,7 +14,9 @@
 #include <gtest/gtest.h>
 #include <petscksp.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "strand/solvers/InterfaceSchur.hpp"
 #include "strand/solvers/StaticSolver.hpp"
@@ -102,6 +104,57 @@ double diagonalSpread(Mat A) {
   return big / small;
 }
 
+int size() {
+  PetscMPIInt n;
+  MPI_Comm_size(PETSC_COMM_WORLD, &n);
+  return n;
+}
+
+// The number of ranks that solve their segment `how`, after the set-up of ksp.
+int ranksSolving(KSP ksp, solvers::SegmentSolve how) {
+  PC pc;
+  solvers::SegmentSolve mine;
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetUp(ksp));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPGetPC(ksp, &pc));
+  PetscCallAbort(PETSC_COMM_WORLD, solvers::InterfaceSchurGetSegmentSolve(pc, &mine));
+  int here = mine == how ? 1 : 0, ranks;
+  MPI_Allreduce(&here, &ranks, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  return ranks;
+}
+
+// P A P^T for the permutation P that reverses the order of the blocks owned by each rank (each
+// rank keeps its rows; unknowns within a block keep their order).
+Mat reversedOnEachRank(Mat A) {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  PetscInt bs, lo, hi, n;
+  const PetscInt* ranges;
+  PetscCallAbort(comm, MatGetBlockSize(A, &bs));
+  PetscCallAbort(comm, MatGetOwnershipRange(A, &lo, &hi));
+  PetscCallAbort(comm, MatGetSize(A, &n, nullptr));
+  PetscCallAbort(comm, MatGetOwnershipRanges(A, &ranges));
+  const auto reversed = [&](PetscInt i) {
+    const PetscInt p = static_cast<PetscInt>(std::upper_bound(ranges, ranges + size() + 1, i) - ranges) - 1;
+    const PetscInt first = ranges[p], blocks = (ranges[p + 1] - first) / bs;
+    return first + (blocks - 1 - (i - first) / bs) * bs + (i - first) % bs;
+  };
+  Mat R;
+  PetscCallAbort(comm, MatCreateBAIJ(comm, bs, hi - lo, hi - lo, n, n, 8, nullptr, 8, nullptr, &R));
+  PetscCallAbort(comm, MatSetOption(R, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  for (PetscInt i = lo; i < hi; ++i) {
+    PetscInt nc;
+    const PetscInt* c;
+    const PetscScalar* v;
+    PetscCallAbort(comm, MatGetRow(A, i, &nc, &c, &v));
+    std::vector<PetscInt> cols(nc);
+    for (PetscInt k = 0; k < nc; ++k) cols[k] = reversed(c[k]);
+    const PetscInt row = reversed(i);
+    PetscCallAbort(comm, MatSetValues(R, 1, &row, nc, cols.data(), v, INSERT_VALUES));
+    PetscCallAbort(comm, MatRestoreRow(A, i, &nc, &c, &v));
+  }
+  PetscCallAbort(comm, MatAssemblyBegin(R, MAT_FINAL_ASSEMBLY));
+  PetscCallAbort(comm, MatAssemblyEnd(R, MAT_FINAL_ASSEMBLY));
+  return R;
+}
 
 // A x = b and A^T x = b by `schur` (set up on A) against MUMPS: the backward and the forward error.
 void expectExactSolves(KSP schur, Mat A, const char* label) {
@@ -141,8 +194,8 @@ TEST(InterfaceSchur, SolvesTheNewtonMatrixOfAChainLikeMumps) {
   }
 }
 
-// New values in the same structure (a Newton matrix rebuilt): the set-up refills and refactors
-// (split sweeps: the segment's copy and its state) and solves exactly again.
+// New values in the same structure (a Newton matrix rebuilt): the set-up refactors (split sweeps:
+// the local block itself, whose state changed) and solves exactly again.
 TEST(InterfaceSchur, RefactorsWhenTheValuesChange) {
   NewtonCantilever c;
   KSP schur = solverFor(c.A, false);
@@ -160,12 +213,7 @@ TEST(InterfaceSchur, AnotherLocalOrderingFallsBackToTheInteriorSolve) {
   NewtonCantilever c;
   PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsSetValue(nullptr, "-schur_interior_pc_factor_mat_ordering_type", "rcm"));
   KSP schur = solverFor(c.A, false);
-  PC pc;
-  PetscBool sweeps;
-  PetscCallAbort(PETSC_COMM_WORLD, KSPSetUp(schur));
-  PetscCallAbort(PETSC_COMM_WORLD, KSPGetPC(schur, &pc));
-  PetscCallAbort(PETSC_COMM_WORLD, solvers::InterfaceSchurUsesSplitSweeps(pc, &sweeps));
-  EXPECT_FALSE(sweeps);
+  EXPECT_EQ(ranksSolving(schur, solvers::SegmentSolve::InteriorSolve), size());
   expectExactSolves(schur, c.A, "RCM ordering");
   KSPDestroy(&schur);
   PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsClearValue(nullptr, "-schur_interior_pc_factor_mat_ordering_type"));
@@ -217,21 +265,32 @@ TEST(InterfaceSchur, AZeroPivotOnOneRankFailsTheSolveOnAll) {
 }
 
 // The split sweeps (InterfaceSchurSweeps.cpp) serve the segments whose interface is at one end: the
-// two end segments of the chain on two or more ranks (one of them with its blocks reversed), never
-// a middle segment (interface at both ends) and never one rank (no interface). The solves above
-// check their answers; this checks that those runs took the path meant.
+// two end segments of the chain on two or more ranks, never a middle segment (interface at both
+// ends) and never one rank (no interface). DofMap numbers both end segments with the interface
+// last, so neither needs the reversed copy. The solves above check their answers; this checks that
+// those runs took the path meant.
 TEST(InterfaceSchur, TheEndSegmentsOfTheChainSolveBySplitSweeps) {
   NewtonCantilever c;
   KSP ksp = solverFor(c.A, false);
-  PC pc;
-  PetscMPIInt size;
-  PetscBool sweeps;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  PetscCallAbort(PETSC_COMM_WORLD, KSPSetUp(ksp));
-  PetscCallAbort(PETSC_COMM_WORLD, KSPGetPC(ksp, &pc));
-  PetscCallAbort(PETSC_COMM_WORLD, solvers::InterfaceSchurUsesSplitSweeps(pc, &sweeps));
-  int here = sweeps ? 1 : 0, ranks;
-  MPI_Allreduce(&here, &ranks, 1, MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
-  EXPECT_EQ(ranks, size == 1 ? 0 : 2);
+  EXPECT_EQ(ranksSolving(ksp, solvers::SegmentSolve::SplitSweeps), size() == 1 ? 0 : 2);
+  EXPECT_EQ(ranksSolving(ksp, solvers::SegmentSolve::ReversedSplitSweeps), 0);
   KSPDestroy(&ksp);
+}
+
+// The same chain with each rank's blocks numbered in reverse: the end segments now have their
+// interface first and solve by split sweeps on a reversed copy of the local block (refilled at a
+// refactorization), exactly.
+TEST(InterfaceSchur, ASegmentNumberedInterfaceFirstSolvesByReversedSweeps) {
+  for (int dim : {3, 2}) {
+    NewtonCantilever c(dim);
+    Mat R = reversedOnEachRank(c.A);
+    KSP schur = solverFor(R, false);
+    EXPECT_EQ(ranksSolving(schur, solvers::SegmentSolve::ReversedSplitSweeps), size() == 1 ? 0 : 2);
+    expectExactSolves(schur, R, dim == 3 ? "3D, reversed" : "2D, reversed");
+    PetscCallAbort(PETSC_COMM_WORLD, MatScale(R, 0.5));
+    PetscCallAbort(PETSC_COMM_WORLD, KSPSetOperators(schur, R, R));
+    expectExactSolves(schur, R, dim == 3 ? "3D, reversed, new values" : "2D, reversed, new values");
+    KSPDestroy(&schur);
+    MatDestroy(&R);
+  }
 }

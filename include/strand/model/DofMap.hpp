@@ -1,8 +1,11 @@
 // Parallel layout of the DOF blocks (design section 5).
 //
 // Rank 0 partitions the block graph with METIS_PartGraphKway and broadcasts the parts; every rank
-// renumbers the blocks so that each owns a contiguous range, takes the elements and couplings (rigid
-// bodies, joints) whose first block it owns, and computes the exact block preallocation of its rows. All blocks have `dim` coordinates.
+// renumbers the blocks so that each owns a contiguous range (in model order, or reversed when the
+// part's interface to other parts is exactly its first blocks: an end segment of a chain then ends
+// with its interface, see DofMap.cpp), takes the elements and couplings (rigid bodies, joints) whose
+// first block it owns, and computes the exact block preallocation of its rows. All blocks have `dim`
+// coordinates.
 #pragma once
 #include <petscmat.h>
 

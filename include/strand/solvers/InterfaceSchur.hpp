@@ -18,8 +18,10 @@
 // Each rank solves its own segment one of two ways (src/solvers/InterfaceSchurData.hpp):
 //   - split sweeps, when its interface is at one end of the segment (the two end segments of the
 //     chain; every rank of a two-rank run): one LU of the whole local block with the interface
-//     last (natural order, or the blocks reversed), and the interface solve between its forward
-//     and backward sweep, so an apply costs one local solve;
+//     last, and the interface solve between its forward and backward sweep, so an apply costs one
+//     local solve. DofMap numbers an end segment with its interface last, so the local block is
+//     factored as it is; a segment numbered the other way (interface first) factors a copy with
+//     its blocks reversed;
 //   - the interior solve otherwise (a middle segment): the LU of A_II (RCM), Z = A_II^{-1} A_IG
 //     kept, and an apply is one interior solve plus x_I -= Z x_G.
 // Why: a chain's matrix is banded and a one-rank banded LU is already near-optimal; MUMPS's
@@ -43,7 +45,10 @@ PetscErrorCode InterfaceSchurRegister();
 // Sizes after PCSetUp: interface unknowns (all ranks) and this rank's interior unknowns.
 PetscErrorCode InterfaceSchurGetSizes(PC pc, PetscInt* interface, PetscInt* localInterior);
 
-// After PCSetUp: whether this rank solves its segment by split sweeps (see above).
-PetscErrorCode InterfaceSchurUsesSplitSweeps(PC pc, PetscBool* sweeps);
+// How a rank solves its own segment (see above).
+enum class SegmentSolve { InteriorSolve, SplitSweeps, ReversedSplitSweeps };
+
+// After PCSetUp: how this rank solves its segment.
+PetscErrorCode InterfaceSchurGetSegmentSolve(PC pc, SegmentSolve* how);
 
 }  // namespace strand::solvers
