@@ -5,6 +5,8 @@
 
 #include <petsc/private/tsimpl.h>
 
+#include <utility>
+
 namespace strand::solvers {
 
 namespace {
@@ -15,6 +17,7 @@ struct AlphaData {
   Vec X0 = nullptr, V0 = nullptr, A0 = nullptr, a0 = nullptr;  // start of the step
   Vec V1 = nullptr, A1 = nullptr, a1 = nullptr;                // end of the step (X1 is the SNES iterate)
   Vec A = nullptr, a = nullptr;  // state at ts->ptime: acceleration and acceleration-like variable
+  bool inStep = false;           // within step(): the state at ts->ptime is in A0, a0
   PrescribeFn prescribe = nullptr;
   void* prescribeCtx = nullptr;
   Vec startOffset = nullptr;   // added to V0 in the next step only (perturbed starting values)
@@ -43,14 +46,14 @@ PetscErrorCode stageVectors(TS ts, Vec X1) {
   AlphaData* d = dataOf(ts);
   const PetscReal h = ts->time_step, b = d->beta, g = d->gamma;
   PetscFunctionBeginUser;
+  // two passes over the vectors per quantity: they are memory-bound (docs/performance.md)
+  const PetscReal s = 1.0 / (b * h * h), af = d->alphaF, am = d->alphaM;
   PetscCall(VecWAXPY(d->a1, -1.0, d->X0, X1));
-  PetscCall(VecAXPY(d->a1, -h, d->V0));
-  PetscCall(VecAXPBY(d->a1, -(0.5 - b) / b, 1.0 / (b * h * h), d->a0));
+  PetscCall(VecAXPBYPCZ(d->a1, -h * s, -(0.5 - b) / b, s, d->V0, d->a0));
   PetscCall(VecWAXPY(d->V1, (1.0 - g) / g, d->a0, d->a1));
   PetscCall(VecAYPX(d->V1, h * g, d->V0));
-  PetscCall(VecCopy(d->a1, d->A1));
-  PetscCall(VecAXPBY(d->A1, d->alphaM / (1.0 - d->alphaF), (1.0 - d->alphaM) / (1.0 - d->alphaF), d->a0));
-  PetscCall(VecAXPY(d->A1, -d->alphaF / (1.0 - d->alphaF), d->A0));
+  PetscCall(VecWAXPY(d->A1, am / (1.0 - am), d->a0, d->a1));  // alpha_m < 1 (setUp)
+  PetscCall(VecAXPBY(d->A1, -af / (1.0 - af), (1.0 - am) / (1.0 - af), d->A0));
   if (d->prescribe) PetscCall(d->prescribe(d->stageTime, nullptr, d->V1, d->A1, d->prescribeCtx));  // exact rates
   PetscFunctionReturn(0);
 }
@@ -82,8 +85,12 @@ PetscErrorCode step(TS ts) {
     PetscCall(VecAXPY(d->V0, 1.0, d->startOffset));
     PetscCall(VecDestroy(&d->startOffset));
   }
-  PetscCall(VecCopy(d->A, d->A0));
-  PetscCall(VecCopy(d->a, d->a0));
+  // A0, a0 = A, a by exchange, not copy: A and a are rewritten on acceptance (the Get functions
+  // give A0, a0 meanwhile)
+  std::swap(d->A0, d->A);
+  std::swap(d->a0, d->a);
+  d->inStep = true;
+  PetscBool accept = PETSC_FALSE, fresh = PETSC_TRUE;  // fresh: X1 still equals X0
   PetscInt rejections = 0;
   for (;;) {
     const PetscReal h = ts->time_step;
@@ -93,7 +100,9 @@ PetscErrorCode step(TS ts) {
     Vec X1 = ts->vec_sol;
     for (PetscBool again = PETSC_TRUE; again;) {
       again = PETSC_FALSE;
-      PetscCall(VecCopy(d->X0, X1));  // predictor: constant acceleration (or velocity, or displacement)
+      // predictor: constant acceleration (or velocity, or displacement)
+      if (!fresh) PetscCall(VecCopy(d->X0, X1));
+      fresh = PETSC_FALSE;
       if (d->predictor >= 1) PetscCall(VecAXPY(X1, h, d->V0));
       if (d->predictor >= 2) PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
       if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, nullptr, nullptr, d->prescribeCtx));
@@ -119,15 +128,14 @@ PetscErrorCode step(TS ts) {
       }
       if (again) ts->reject++;
     }
-    PetscBool accept;
     PetscCall(TSAdaptCheckStage(ts->adapt, ts, ts->ptime + h, X1, &accept));
     if (accept) {
       PetscCall(stageVectors(ts, X1));  // V1, A1 of the converged X1
       if (d->differential)  // multipliers have no rate: the predictor keeps their last value
         for (Vec v : {d->V1, d->A1, d->a1}) PetscCall(VecPointwiseMult(v, v, d->differential));
       PetscCall(VecCopy(d->V1, ts->vec_dot));
-      PetscCall(VecCopy(d->A1, d->A));
-      PetscCall(VecCopy(d->a1, d->a));
+      std::swap(d->A, d->A1);  // A1, a1 are rewritten by the next stageVectors
+      std::swap(d->a, d->a1);
       // the next step (fixed unless an adaptor is chosen; stretched or cut to land on the final time)
       PetscReal next = h;
       PetscCall(TSAdaptChoose(ts->adapt, ts, h, nullptr, &next, &accept));
@@ -143,6 +151,11 @@ PetscErrorCode step(TS ts) {
       break;
     }
   }
+  if (!accept) {  // the step failed: the state stays that of its start
+    std::swap(d->A0, d->A);
+    std::swap(d->a0, d->a);
+  }
+  d->inStep = false;
   PetscFunctionReturn(0);
 }
 
@@ -161,6 +174,9 @@ PetscErrorCode setUp(TS ts) {
   PetscFunctionBeginUser;
   PetscCheck(ts->vec_dot, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ORDER,
              "%s integrates second-order systems: call TS2SetSolution()", kTsGeneralizedAlpha);
+  PetscCheck(d->alphaM < 1.0 && d->alphaF < 1.0, PetscObjectComm(reinterpret_cast<PetscObject>(ts)),
+             PETSC_ERR_ARG_OUTOFRANGE, "%s needs alpha_m < 1 and alpha_f < 1, not %g and %g", kTsGeneralizedAlpha,
+             static_cast<double>(d->alphaM), static_cast<double>(d->alphaF));
   for (Vec* v : {&d->X0, &d->V0, &d->A0, &d->a0, &d->V1, &d->A1, &d->a1})
     if (!*v) PetscCall(VecDuplicate(ts->vec_sol, v));
   PetscCall(TSGetSNES(ts, &ts->snes));
@@ -283,15 +299,17 @@ PetscErrorCode GeneralizedAlphaSetAcceleration(TS ts, Vec A) {
 PetscErrorCode GeneralizedAlphaGetAcceleration(TS ts, Vec* A) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
-  *A = dataOf(ts)->A;
+  const AlphaData* d = dataOf(ts);
+  *A = d->inStep ? d->A0 : d->A;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode GeneralizedAlphaGetState(TS ts, Vec* A, Vec* a) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
-  *A = dataOf(ts)->A;
-  *a = dataOf(ts)->a;
+  const AlphaData* d = dataOf(ts);
+  *A = d->inStep ? d->A0 : d->A;
+  *a = d->inStep ? d->a0 : d->a;
   PetscFunctionReturn(0);
 }
 
