@@ -5,9 +5,14 @@ Runs bench_cantilever_dynamics (1 mm steel elements on a 100 m cable, 1e5 elemen
 one rank and then on two, and prints both JSON lines plus one line with the ratio (target <= 0.59)
 of the steady time per step (the steps after the first: without the one-off set-up and first
 factorizations, which a long run amortizes) and, for reference, the ratio of the whole runs.
+When bench_memory_bandwidth sits next to BENCH, it runs on one and two ranks too, and the line adds
+"memory_bound_ratio": the ratio a purely memory-bound step would reach on this machine (one-rank
+bandwidth over twice the per-rank bandwidth of two ranks streaming at once; 0.5 if the memory bus
+kept up, docs/performance.md).
 Usage: parallel_ratio.py BENCH MPIEXEC [bench options]; defaults as docs/performance.md.
 """
 import json
+import os
 import subprocess
 import sys
 
@@ -28,10 +33,16 @@ def main():
     ratio = two["steady_ms_per_step"] / one["steady_ms_per_step"]
     whole = two["ms_per_step"] / one["ms_per_step"]
     same = abs(one["tip_z"] - two["tip_z"]) <= 1e-12 * max(1.0, abs(one["tip_z"]))
-    print(json.dumps({"bench": "parallel_ratio", "elements": one["elements"], "steps": one["steps"],
-                      "steady_ms_per_step_1": one["steady_ms_per_step"],
-                      "steady_ms_per_step_2": two["steady_ms_per_step"], "ratio": round(ratio, 4),
-                      "target": 0.59, "whole_run_ratio": round(whole, 4), "same_tip": same}))
+    result = {"bench": "parallel_ratio", "elements": one["elements"], "steps": one["steps"],
+              "steady_ms_per_step_1": one["steady_ms_per_step"],
+              "steady_ms_per_step_2": two["steady_ms_per_step"], "ratio": round(ratio, 4),
+              "target": 0.59, "whole_run_ratio": round(whole, 4), "same_tip": same}
+    bandwidth = os.path.join(os.path.dirname(bench), "bench_memory_bandwidth")
+    if os.path.exists(bandwidth):
+        one_bw = run([bandwidth])["axpy_gb_per_s_per_rank"]
+        two_bw = run([mpiexec, "-n", "2", bandwidth])["axpy_gb_per_s_per_rank"]
+        result["memory_bound_ratio"] = round(one_bw / (2.0 * two_bw), 4)
+    print(json.dumps(result))
 
 
 if __name__ == "__main__":
