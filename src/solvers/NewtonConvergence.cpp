@@ -34,25 +34,57 @@ bool stepConverged(const NewtonFloor& floor, PetscInt it, PetscReal previousStep
   return it > 0 && error < stol * std::max(xnorm, floor.coordinateNorm);
 }
 
-// SNESLINESEARCHBASIC (the full step X - lambda Y) without the residual at the new iterate when the
-// test below will accept it on its step alone: the residual would only be discarded.
+// u -= lambda du and the sums of squares of both; restrict (distinct vectors) lets the compiler
+// vectorize it.
+void stepLoop(PetscInt n, PetscReal lambda, PetscScalar* PETSC_RESTRICT u, const PetscScalar* PETSC_RESTRICT du,
+              PetscReal sums[2]) {
+  PetscReal uu = 0.0, dd = 0.0;
+  for (PetscInt i = 0; i < n; ++i) {
+    u[i] -= lambda * du[i];
+    uu += PetscRealPart(u[i] * PetscConj(u[i]));
+    dd += PetscRealPart(du[i] * PetscConj(du[i]));
+  }
+  sums[0] = uu;
+  sums[1] = dd;
+}
+
+// X -= lambda Y in place, and |X|, |Y| (2-norms) from the same pass (memory-bound: SNES's basic
+// line search writes W = X - lambda Y, reads both for the norms and copies W back to X).
+PetscErrorCode updateInPlace(Vec X, Vec Y, PetscReal lambda, PetscReal* xnorm, PetscReal* ynorm) {
+  PetscInt n;
+  PetscScalar* x;
+  const PetscScalar* y;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(X, &n));
+  PetscCall(VecGetArray(X, &x));
+  PetscCall(VecGetArrayRead(Y, &y));
+  PetscReal sums[2], global[2];
+  stepLoop(n, lambda, x, y, sums);
+  PetscCall(PetscLogFlops(6.0 * n));
+  PetscCall(VecRestoreArrayRead(Y, &y));
+  PetscCall(VecRestoreArray(X, &x));
+  PetscCallMPI(MPI_Allreduce(sums, global, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(X))));
+  *xnorm = std::sqrt(global[0]);
+  *ynorm = std::sqrt(global[1]);
+  PetscFunctionReturn(0);
+}
+
+// SNESLINESEARCHBASIC (the full step X - lambda Y, here in place) without the residual at the new
+// iterate when the test below will accept it on its step alone: the residual would only be
+// discarded.
 PetscErrorCode fullStep(SNESLineSearch ls, void* ctx) {
   const auto* floor = static_cast<const NewtonFloor*>(ctx);
   SNES snes;
-  Vec X, F, Y, W;
+  Vec X, F, Y;
   PetscReal xnorm, fnorm, ynorm, lambda, stol;
   PetscInt it;
   PetscFunctionBeginUser;
   PetscCall(SNESLineSearchGetSNES(ls, &snes));
-  PetscCall(SNESLineSearchGetVecs(ls, &X, &F, &Y, &W, nullptr));
+  PetscCall(SNESLineSearchGetVecs(ls, &X, &F, &Y, nullptr, nullptr));
   PetscCall(SNESLineSearchGetNorms(ls, &xnorm, &fnorm, &ynorm));
   PetscCall(SNESLineSearchGetLambda(ls, &lambda));
   PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_SUCCEEDED));
-  PetscCall(VecWAXPY(W, -lambda, Y, X));
-  PetscCall(VecNormBegin(Y, NORM_2, &ynorm));
-  PetscCall(VecNormBegin(W, NORM_2, &xnorm));
-  PetscCall(VecNormEnd(Y, NORM_2, &ynorm));
-  PetscCall(VecNormEnd(W, NORM_2, &xnorm));
+  PetscCall(updateInPlace(X, Y, lambda, &xnorm, &ynorm));
   PetscCall(SNESGetIterationNumber(snes, &it));
   PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
   // the test of iteration it + 1 sees |R| of this iterate (fnorm <= fnorm0 lets it accept)
@@ -60,16 +92,16 @@ PetscErrorCode fullStep(SNESLineSearch ls, void* ctx) {
                         stepConverged(*floor, it + 1, floor->step, ynorm, xnorm, stol);
   if (!accepted) {
     PetscBool domainError;
-    PetscCall(SNESComputeFunction(snes, W, F));
+    PetscCall(SNESComputeFunction(snes, X, F));
     PetscCall(SNESGetFunctionDomainError(snes, &domainError));
-    if (domainError) {
+    if (domainError) {  // back to the last iterate (to round-off), as a failed line search leaves it
+      PetscCall(VecAXPY(X, lambda, Y));
       PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_DOMAIN));
       PetscFunctionReturn(0);
     }
     PetscCall(VecNorm(F, NORM_2, &fnorm));
   }
   PetscCall(SNESLineSearchSetNorms(ls, xnorm, fnorm, ynorm));
-  PetscCall(VecCopy(W, X));
   PetscFunctionReturn(0);
 }
 
