@@ -5,6 +5,7 @@
 
 #include <petsc/private/tsimpl.h>
 
+#include <array>
 #include <utility>
 
 namespace strand::solvers {
@@ -64,29 +65,19 @@ PetscErrorCode stageVectors(TS ts, Vec X1) {
   AlphaData* d = dataOf(ts);
   const PetscReal h = ts->time_step, b = d->beta, g = d->gamma, am = d->alphaM, af = d->alphaF;
   const PetscReal s = 1.0 / (b * h * h), ca = (0.5 - b) / b, cA = 1.0 / (1.0 - af);  // alpha_f < 1 (setUp)
+  const std::array<Vec, 5> in{X1, d->X0, d->V0, d->a0, d->A0};
+  const std::array<Vec, 3> out{d->a1, d->V1, d->A1};
+  std::array<const PetscScalar*, 5> r;
+  std::array<PetscScalar*, 3> w;
   PetscInt n;
-  const PetscScalar *x1, *x0, *v0, *a0, *A0;
-  PetscScalar *a1, *v1, *A1;
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(X1, &n));
-  PetscCall(VecGetArrayRead(X1, &x1));
-  PetscCall(VecGetArrayRead(d->X0, &x0));
-  PetscCall(VecGetArrayRead(d->V0, &v0));
-  PetscCall(VecGetArrayRead(d->a0, &a0));
-  PetscCall(VecGetArrayRead(d->A0, &A0));
-  PetscCall(VecGetArrayWrite(d->a1, &a1));
-  PetscCall(VecGetArrayWrite(d->V1, &v1));
-  PetscCall(VecGetArrayWrite(d->A1, &A1));
-  stageLoop(n, {s, h, ca, g, am, af, cA}, x1, x0, v0, a0, A0, a1, v1, A1);
+  for (size_t k = 0; k < in.size(); ++k) PetscCall(VecGetArrayRead(in[k], &r[k]));
+  for (size_t k = 0; k < out.size(); ++k) PetscCall(VecGetArrayWrite(out[k], &w[k]));
+  stageLoop(n, {s, h, ca, g, am, af, cA}, r[0], r[1], r[2], r[3], r[4], w[0], w[1], w[2]);
   PetscCall(PetscLogFlops(17.0 * n));
-  PetscCall(VecRestoreArrayWrite(d->A1, &A1));
-  PetscCall(VecRestoreArrayWrite(d->V1, &v1));
-  PetscCall(VecRestoreArrayWrite(d->a1, &a1));
-  PetscCall(VecRestoreArrayRead(d->A0, &A0));
-  PetscCall(VecRestoreArrayRead(d->a0, &a0));
-  PetscCall(VecRestoreArrayRead(d->V0, &v0));
-  PetscCall(VecRestoreArrayRead(d->X0, &x0));
-  PetscCall(VecRestoreArrayRead(X1, &x1));
+  for (size_t k = 0; k < out.size(); ++k) PetscCall(VecRestoreArrayWrite(out[k], &w[k]));
+  for (size_t k = 0; k < in.size(); ++k) PetscCall(VecRestoreArrayRead(in[k], &r[k]));
   if (d->prescribe) PetscCall(d->prescribe(d->stageTime, nullptr, d->V1, d->A1, d->prescribeCtx));  // exact rates
   PetscFunctionReturn(0);
 }
