@@ -30,6 +30,14 @@ struct AlphaData {
 
 AlphaData* dataOf(TS ts) { return static_cast<AlphaData*>(ts->data); }
 
+// *to = a copy of from, created on first use
+PetscErrorCode copyInto(Vec from, Vec* to) {
+  PetscFunctionBeginUser;
+  if (!*to) PetscCall(VecDuplicate(from, to));
+  PetscCall(VecCopy(from, *to));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode checkType(TS ts) {
   PetscBool match;
   PetscFunctionBeginUser;
@@ -313,10 +321,8 @@ PetscErrorCode GeneralizedAlphaSetAcceleration(TS ts, Vec A) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
   AlphaData* d = dataOf(ts);
-  if (!d->A) PetscCall(VecDuplicate(A, &d->A));
-  if (!d->a) PetscCall(VecDuplicate(A, &d->a));
-  PetscCall(VecCopy(A, d->A));
-  PetscCall(VecCopy(A, d->a));  // a_0 = A_0 (Arnold & Bruls 2007, Sec. 3)
+  PetscCall(copyInto(A, &d->A));
+  PetscCall(copyInto(A, &d->a));  // a_0 = A_0 (Arnold & Bruls 2007, Sec. 3)
   PetscFunctionReturn(0);
 }
 
@@ -348,8 +354,7 @@ PetscErrorCode GeneralizedAlphaSetStartVelocityOffset(TS ts, Vec dv) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
   AlphaData* d = dataOf(ts);
-  if (!d->startOffset) PetscCall(VecDuplicate(dv, &d->startOffset));
-  PetscCall(VecCopy(dv, d->startOffset));
+  PetscCall(copyInto(dv, &d->startOffset));
   PetscFunctionReturn(0);
 }
 
@@ -357,8 +362,7 @@ PetscErrorCode GeneralizedAlphaSetAlgebraic(TS ts, Vec mask) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
   AlphaData* d = dataOf(ts);
-  if (!d->differential) PetscCall(VecDuplicate(mask, &d->differential));
-  PetscCall(VecCopy(mask, d->differential));
+  PetscCall(copyInto(mask, &d->differential));
   PetscCall(VecShift(d->differential, -1.0));
   PetscCall(VecScale(d->differential, -1.0));
   PetscFunctionReturn(0);

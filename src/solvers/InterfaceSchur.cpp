@@ -214,12 +214,12 @@ PetscErrorCode clearLocalSolve(SchurData* d) {
 PetscErrorCode factorLocal(SchurData* d, Mat Ad) {
   PetscFunctionBeginUser;
   Mat local = localMatrix(d, Ad);
-  if (d->sweeps) {
-    if (d->reversed) PetscCall(schur::fillSegment(d, Ad));
-  } else {
+  if (!d->sweeps) {
     PetscCall(MatCopy(Ad, d->interiorBlock, SAME_NONZERO_PATTERN));
     PetscCall(MatZeroRowsColumns(d->interiorBlock, static_cast<PetscInt>(d->interface.size()), d->interface.data(),
                                  1.0, nullptr, nullptr));
+  } else if (d->reversed) {
+    PetscCall(schur::fillSegment(d, Ad));
   }
   PetscCall(KSPSetOperators(d->interiorSolver, local, local));
   PetscCall(KSPSetUp(d->interiorSolver));

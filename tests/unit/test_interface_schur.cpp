@@ -132,8 +132,9 @@ Mat reversedOnEachRank(Mat A) {
   PetscCallAbort(comm, MatGetOwnershipRange(A, &lo, &hi));
   PetscCallAbort(comm, MatGetSize(A, &n, nullptr));
   PetscCallAbort(comm, MatGetOwnershipRanges(A, &ranges));
+  const int ranks = size();
   const auto reversed = [&](PetscInt i) {
-    const PetscInt p = static_cast<PetscInt>(std::upper_bound(ranges, ranges + size() + 1, i) - ranges) - 1;
+    const PetscInt p = static_cast<PetscInt>(std::upper_bound(ranges, ranges + ranks + 1, i) - ranges) - 1;
     const PetscInt first = ranges[p], blocks = (ranges[p + 1] - first) / bs;
     return first + (blocks - 1 - (i - first) / bs) * bs + (i - first) % bs;
   };
