@@ -122,10 +122,7 @@ PetscErrorCode createInteriorSolver(PC pc, SchurData* d) {
   PetscCall(KSPSetType(d->interiorSolver, KSPPREONLY));
   PetscCall(KSPGetPC(d->interiorSolver, &lu));
   PetscCall(PCSetType(lu, PCLU));
-  // RCM keeps the band (StaticSolver.cpp); the split sweeps need the natural order (PETSc's BAIJ LU
-  // has forward and backward sweeps only there, for bs <= 3), which splitSweepsFit checked to be
-  // banded
-  PetscCall(PCFactorSetMatOrderingType(lu, d->sweeps ? MATORDERINGNATURAL : MATORDERINGRCM));
+  PetscCall(PCFactorSetMatOrderingType(lu, MATORDERINGRCM));  // RCM keeps the band (StaticSolver.cpp)
   PetscCall(KSPSetFromOptions(d->interiorSolver));
   PetscFunctionReturn(0);
 }
@@ -161,8 +158,7 @@ PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar
     }
     PetscCall(MatRestoreRow(P, rstart + d->interface[i], &nc, &c, &v));
   }
-  if (d->sweeps) {
-    PetscCall(schur::segmentSchur(d));
+  if (d->sweeps) {  // S00 from the factor (factorSegment)
     for (PetscInt i = 0; i < mine; ++i)
       for (PetscInt j = 0; j < mine; ++j) (*rows)[i * nG + d->ownOffset + j] += d->S00(i, j);
     PetscFunctionReturn(0);
@@ -185,43 +181,35 @@ PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar
   PetscFunctionReturn(0);
 }
 
-// The matrix this rank factors: A_II (interior solve), A_d itself or its reversed copy (split sweeps).
-Mat localMatrix(const SchurData* d, Mat Ad) { return !d->sweeps ? d->interiorBlock : d->reversed ? d->segment : Ad; }
-
-// The local matrix, solver and work vectors of this rank's way to solve its segment.
-PetscErrorCode prepareLocalSolve(PC pc, SchurData* d, Mat Ad) {
+// The interior solve's matrix, solver and work vectors (the split sweeps' LU is analyzed by
+// splitSweepsFit).
+PetscErrorCode prepareInteriorSolve(PC pc, SchurData* d, Mat Ad) {
   PetscFunctionBeginUser;
   PetscCall(createInteriorSolver(pc, d));
-  if (!d->sweeps) PetscCall(MatDuplicate(Ad, MAT_DO_NOT_COPY_VALUES, &d->interiorBlock));
-  else if (d->reversed) PetscCall(schur::buildSegment(d, Ad));
-  PetscCall(MatCreateVecs(localMatrix(d, Ad), &d->w, &d->t));
+  PetscCall(MatDuplicate(Ad, MAT_DO_NOT_COPY_VALUES, &d->interiorBlock));
+  PetscCall(MatCreateVecs(d->interiorBlock, &d->w, &d->t));
   PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, d->rows, nullptr, &d->y));
-  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, d->rows, nullptr, &d->u));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode clearLocalSolve(SchurData* d) {
   PetscFunctionBeginUser;
   PetscCall(MatDestroy(&d->interiorBlock));
-  PetscCall(MatDestroy(&d->segment));
   PetscCall(KSPDestroy(&d->interiorSolver));
-  for (Vec* v : {&d->w, &d->y, &d->t, &d->u}) PetscCall(VecDestroy(v));
+  for (Vec* v : {&d->w, &d->y, &d->t}) PetscCall(VecDestroy(v));
+  d->lu = BandedBlockLu();
+  d->work.clear();
   PetscFunctionReturn(0);
 }
 
-// Copies A_d's values into the local matrix when it is a copy, and factors it (local; a failure is
-// read after). A_d itself is refactored when its values changed since the last factorization.
-PetscErrorCode factorLocal(SchurData* d, Mat Ad) {
+// A_II (A_d with the interface rows and columns replaced by the identity) factored (local; a
+// failure is read after).
+PetscErrorCode factorInterior(SchurData* d, Mat Ad) {
   PetscFunctionBeginUser;
-  Mat local = localMatrix(d, Ad);
-  if (!d->sweeps) {
-    PetscCall(MatCopy(Ad, d->interiorBlock, SAME_NONZERO_PATTERN));
-    PetscCall(MatZeroRowsColumns(d->interiorBlock, static_cast<PetscInt>(d->interface.size()), d->interface.data(),
-                                 1.0, nullptr, nullptr));
-  } else if (d->reversed) {
-    PetscCall(schur::fillSegment(d, Ad));
-  }
-  PetscCall(KSPSetOperators(d->interiorSolver, local, local));
+  PetscCall(MatCopy(Ad, d->interiorBlock, SAME_NONZERO_PATTERN));
+  PetscCall(MatZeroRowsColumns(d->interiorBlock, static_cast<PetscInt>(d->interface.size()), d->interface.data(), 1.0,
+                               nullptr, nullptr));
+  PetscCall(KSPSetOperators(d->interiorSolver, d->interiorBlock, d->interiorBlock));
   PetscCall(KSPSetUp(d->interiorSolver));
   PetscFunctionReturn(0);
 }
@@ -246,25 +234,23 @@ PetscErrorCode setUp(PC pc) {
   if (!d->built) {
     PetscCall(findInterface(d, P));
     PetscCall(schur::splitSweepsFit(d, Ad, blocked));
-    PetscCall(prepareLocalSolve(pc, d, Ad));
+    if (!d->sweeps) PetscCall(prepareInteriorSolve(pc, d, Ad));
   }
-  PetscCall(factorLocal(d, Ad));
-  PetscBool available = PETSC_TRUE;
-  if (d->sweeps && localFailure(d) == PC_NOERROR) PetscCall(schur::sweepsAvailable(d, &available));
-  // Local, no collective: the interior solve instead when the local solver offers no split sweeps
-  // (another PC, ordering or package chosen under schur_interior_), or when the whole segment has a
-  // zero pivot (the sweeps also pivot on the local Schur complement L_GG U_GG; A_II may still factor).
-  if (d->sweeps && (!available || localFailure(d) != PC_NOERROR)) {
+  bool factored = true;
+  if (d->sweeps) PetscCall(schur::factorSegment(d, Ad, &factored));
+  // Local, no collective: the interior solve instead when the whole segment has a zero pivot (the
+  // sweeps also pivot on the local Schur complement L_GG U_GG; A_II may still factor).
+  if (d->sweeps && !factored) {
     PetscCall(clearLocalSolve(d));
     d->sweeps = false;
     d->sweepsRefused = true;
-    PetscCall(prepareLocalSolve(pc, d, Ad));
-    PetscCall(factorLocal(d, Ad));
+    PetscCall(prepareInteriorSolve(pc, d, Ad));
   }
+  if (!d->sweeps) PetscCall(factorInterior(d, Ad));
   d->built = true;
 
   // a zero pivot on one rank fails the solve on all (the apply below is collective)
-  const PCFailedReason reason = localFailure(d);
+  const PCFailedReason reason = d->sweeps ? PC_NOERROR : localFailure(d);
   PetscMPIInt failedHere = reason != PC_NOERROR, failed;
   PetscCallMPI(MPI_Allreduce(&failedHere, &failed, 1, MPI_INT, MPI_MAX, comm));
   d->failed = failed;
@@ -390,6 +376,22 @@ PetscErrorCode applyTranspose(PC pc, Vec b, Vec x) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode setFromOptions(PC pc, PetscOptionItems* PetscOptionsObject) {
+  SchurData* d = dataOf(pc);
+  PetscBool allowed = d->sweepsAllowed ? PETSC_TRUE : PETSC_FALSE, set;
+  PetscFunctionBeginUser;
+  PetscOptionsHeadBegin(PetscOptionsObject, "Interface Schur complement (strand_interface_schur)");
+  PetscCall(PetscOptionsBool("-pc_strand_interface_schur_split_sweeps",
+                             "Solve a segment with its interface at one end by split sweeps of its LU", "InterfaceSchur.hpp",
+                             allowed, &allowed, &set));
+  PetscOptionsHeadEnd();
+  if (set && static_cast<bool>(allowed) != d->sweepsAllowed) {
+    d->sweepsAllowed = allowed;
+    PetscCall(clear(d));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode reset(PC pc) {
   PetscFunctionBeginUser;
   dataOf(pc)->sweepsRefused = false;  // options may have changed
@@ -429,6 +431,7 @@ PetscErrorCode create(PC pc) {
   pc->ops->setup = setUp;
   pc->ops->apply = apply;
   pc->ops->applytranspose = applyTranspose;
+  pc->ops->setfromoptions = setFromOptions;
   pc->ops->reset = reset;
   pc->ops->destroy = destroy;
   pc->ops->view = view;

@@ -5,12 +5,14 @@
 //    ordering) and Z = A_II^{-1} A_IG, kept; an apply is one solve plus a pass over Z.
 //  - InterfaceSchurSweeps.cpp: the *split sweeps*, for a rank whose interface sits at one end of
 //    its segment (every rank of a two-rank chain, the two end ranks of a longer one): an LU of the
-//    whole local block with the interface last; an apply is one forward and one backward sweep with
-//    the interface solve in between, no Z.
+//    whole local block with the interface last (BandedBlockLu.hpp); an apply is one forward and one
+//    backward sweep with the interface solve in between, no Z.
 #include <petscksp.h>
 
 #include <Eigen/Dense>
 #include <vector>
+
+#include "solvers/BandedBlockLu.hpp"
 
 namespace strand::solvers::schur {
 
@@ -20,9 +22,9 @@ struct SchurData {
   bool built = false, failed = false;
   PetscInt rows = 0;                // local rows
   std::vector<PetscInt> interface;  // local rows on the interface, ascending
-  KSP interiorSolver = nullptr;     // the LU of this rank's segment (either way)
-  Vec w = nullptr, t = nullptr;     // local work vectors
-  Vec y = nullptr, u = nullptr;     // local wrappers that borrow an array
+  KSP interiorSolver = nullptr;     // the LU of A_II (interior solve)
+  Vec w = nullptr, t = nullptr;     // local work vectors (interior solve)
+  Vec y = nullptr;                  // a local wrapper that borrows an array (interior solve)
   // the interface over all ranks: global rows (ascending), counts and offsets per rank
   std::vector<PetscInt> gamma;
   std::vector<PetscMPIInt> counts, offsets;
@@ -39,14 +41,14 @@ struct SchurData {
   // an apply
   Eigen::MatrixXd Z;
 
-  // Split sweeps. The whole local diagonal block A_d in factor order, the interface last: A_d itself
-  // when the interface is at the end (DofMap numbers the end segments of a chain so), else a copy
-  // with its blocks reversed, `segment`, refilled at every factorization. Own interface row i is row
-  // factorRow[i] in factor order.
-  bool sweeps = false, reversed = false, sweepsRefused = false;
+  // Split sweeps. The LU of the whole local diagonal block A_d in factor order, the interface last:
+  // A_d's order when the interface is at the end (DofMap numbers the end segments of a chain so),
+  // else its blocks reversed. Own interface row i is row factorRow[i] in factor order. Allowed
+  // unless -pc_strand_interface_schur_split_sweeps false; refused after a zero pivot of A_d.
+  bool sweeps = false, reversed = false, sweepsRefused = false, sweepsAllowed = true;
   PetscInt bs = 1;
-  Mat segment = nullptr;
-  std::vector<PetscInt> blockMap;  // block k of A_d's value array -> its block in segment's
+  BandedBlockLu lu;
+  std::vector<PetscScalar> work;  // a local vector in factor order
   std::vector<PetscInt> factorRow;
   // With the interface last, the local block factors as L U, and this rank's part of the Schur
   // complement, A_GG - A_GI A_II^{-1} A_IG (own interface rows and columns), is L_GG U_GG.
@@ -59,16 +61,11 @@ PetscErrorCode interfaceSolve(const SchurData& d, MPI_Comm comm, const std::vect
                               Eigen::VectorXd* x);
 
 // Split sweeps (InterfaceSchurSweeps.cpp). splitSweepsFit decides d->sweeps for this rank from the
-// interface found and the structure of A_d (the local diagonal block); when reversed, buildSegment
-// makes the segment's structure once and fillSegment copies A_d's values into it at every
-// factorization;
-// sweepsAvailable says whether the local solver offers the split sweeps (PETSc's own BAIJ LU in
-// natural order does, for bs <= 3); segmentSchur computes L_GG, U_GG and S00 from the factor.
+// interface found and the structure of A_d (the local diagonal block), and analyzes that structure
+// for the LU; factorSegment factors A_d's values (*factored = false at a zero pivot) and computes
+// L_GG, U_GG and S00.
 PetscErrorCode splitSweepsFit(SchurData* d, Mat Ad, PetscBool blocked);
-PetscErrorCode buildSegment(SchurData* d, Mat Ad);
-PetscErrorCode fillSegment(SchurData* d, Mat Ad);
-PetscErrorCode sweepsAvailable(SchurData* d, PetscBool* available);
-PetscErrorCode segmentSchur(SchurData* d);
+PetscErrorCode factorSegment(SchurData* d, Mat Ad, bool* factored);
 // x = A^{-1} b and x = A^{-T} b on this rank's rows (local arrays); collective.
 PetscErrorCode applySweeps(SchurData* d, MPI_Comm comm, const PetscScalar* b, PetscScalar* x);
 PetscErrorCode applyTransposeSweeps(SchurData* d, MPI_Comm comm, const PetscScalar* b, PetscScalar* x);

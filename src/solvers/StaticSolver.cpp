@@ -15,10 +15,10 @@ PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm, bool saddlePoint)
   PC pc;
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(InterfaceSchurRegister());  // also on one rank, for -<prefix>pc_type strand_interface_schur
   if (size > 1 && !saddlePoint) {
     // per-rank banded LU plus the interface Schur complement (InterfaceSchur.hpp): at 1e5
     // elements on two ranks ~20 times faster solves than MUMPS (docs/performance.md)
-    PetscCall(InterfaceSchurRegister());
     PetscCall(PCSetType(pc, kPcInterfaceSchur));
     PetscFunctionReturn(0);
   }

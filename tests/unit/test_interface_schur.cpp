@@ -1,9 +1,9 @@
 // requirement: the parallel default direct solver (PC strand_interface_schur, InterfaceSchur.hpp)
 // solves A x = b and A^T x = b exactly, on any number of ranks, for the Newton matrices of chains,
 // and a zero pivot on one rank stops the solve on all of them with a PC failure (no hang). Both
-// ways a rank solves its segment are exercised (split sweeps on the end ranks, on the local block
-// or on a reversed copy; the interior solve in the middle at -n 3 and under another local
-// ordering), with blocks of 3 (3D) and 2 (2D), and after a refactorization with new values.
+// ways a rank solves its segment are exercised (split sweeps on the end ranks, in the local
+// block's order or reversed; the interior solve in the middle at -n 3 and with the sweeps switched
+// off), with blocks of 3 (3D) and 2 (2D), and after a refactorization with new values.
 // Source of the bound: a direct solve by Gaussian elimination is backward stable, the computed x
 // solves (A + dA) x = b with |dA| <= gamma_n |L| |U| (Higham, "Accuracy and Stability of Numerical
 // Algorithms", 2nd ed. 2002, Thm. 9.3); for these banded matrices without growth the normwise
@@ -208,15 +208,18 @@ TEST(InterfaceSchur, RefactorsWhenTheValuesChange) {
   KSPDestroy(&schur);
 }
 
-// Another ordering for the local LU has no split sweeps in PETSc: every rank then solves by the
-// interior solve, exactly.
-TEST(InterfaceSchur, AnotherLocalOrderingFallsBackToTheInteriorSolve) {
+// With the split sweeps switched off every rank solves by the interior solve (PETSc's LU of A_II,
+// here under another ordering set under schur_interior_), exactly.
+TEST(InterfaceSchur, SplitSweepsSwitchedOffSolveByTheInteriorSolve) {
   NewtonCantilever c;
-  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsSetValue(nullptr, "-schur_interior_pc_factor_mat_ordering_type", "rcm"));
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsSetValue(nullptr, "-pc_strand_interface_schur_split_sweeps", "false"));
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsSetValue(nullptr, "-schur_interior_pc_factor_mat_ordering_type", "nd"));
   KSP schur = solverFor(c.A, false);
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetFromOptions(schur));
   EXPECT_EQ(ranksSolving(schur, solvers::SegmentSolve::InteriorSolve), size());
-  expectExactSolves(schur, c.A, "RCM ordering");
+  expectExactSolves(schur, c.A, "split sweeps off, ND ordering");
   KSPDestroy(&schur);
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsClearValue(nullptr, "-pc_strand_interface_schur_split_sweeps"));
   PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsClearValue(nullptr, "-schur_interior_pc_factor_mat_ordering_type"));
 }
 
@@ -242,8 +245,9 @@ TEST(InterfaceSchur, TheInterfaceIsTheTwoNodesOfEachCutElement) {
   KSPDestroy(&ksp);
 }
 
-// A zero row in rank 0's interior (the middle of its segment): PETSc's LU finds an exact zero pivot there; every rank must
-// return from the solve (the interface solve is collective) with KSP_DIVERGED_PC_FAILED.
+// A zero row in rank 0's interior (the middle of its segment): the segment's LU and then PETSc's LU
+// of A_II find an exact zero pivot there; every rank must return from the solve (the interface
+// solve is collective) with KSP_DIVERGED_PC_FAILED.
 TEST(InterfaceSchur, AZeroPivotOnOneRankFailsTheSolveOnAll) {
   NewtonCantilever c;
   PetscInt lo, hi;
@@ -267,20 +271,20 @@ TEST(InterfaceSchur, AZeroPivotOnOneRankFailsTheSolveOnAll) {
 
 // The split sweeps (InterfaceSchurSweeps.cpp) serve the segments whose interface is at one end: the
 // two end segments of the chain on two or more ranks, never a middle segment (interface at both
-// ends) and never one rank (no interface). DofMap numbers both end segments with the interface
-// last, so neither needs the reversed copy. The solves above check their answers; this checks that
-// those runs took the path meant.
+// ends); on one rank (no interface) they are a plain solve with the banded LU. DofMap numbers both
+// end segments with the interface last, so neither is factored in reverse. The solves above check
+// their answers; this checks that those runs took the path meant.
 TEST(InterfaceSchur, TheEndSegmentsOfTheChainSolveBySplitSweeps) {
   NewtonCantilever c;
   KSP ksp = solverFor(c.A, false);
-  EXPECT_EQ(ranksSolving(ksp, solvers::SegmentSolve::SplitSweeps), size() == 1 ? 0 : 2);
+  EXPECT_EQ(ranksSolving(ksp, solvers::SegmentSolve::SplitSweeps), size() == 1 ? 1 : 2);
   EXPECT_EQ(ranksSolving(ksp, solvers::SegmentSolve::ReversedSplitSweeps), 0);
   KSPDestroy(&ksp);
 }
 
 // The same chain with each rank's blocks numbered in reverse: the end segments now have their
-// interface first and solve by split sweeps on a reversed copy of the local block (refilled at a
-// refactorization), exactly.
+// interface first and solve by split sweeps of the local block factored in reverse block order
+// (again at a refactorization), exactly.
 TEST(InterfaceSchur, ASegmentNumberedInterfaceFirstSolvesByReversedSweeps) {
   for (int dim : {3, 2}) {
     NewtonCantilever c(dim);

@@ -9,4 +9,6 @@ strand_test(NAME unit_constraint SOURCES unit/test_constraint.cpp LABELS unit)
 strand_test(NAME unit_state_space SOURCES unit/test_state_space.cpp LABELS unit NPROCS 1 2)
 strand_test(NAME unit_hub_beam SOURCES unit/test_hub_beam.cpp LABELS unit)
 strand_test(NAME unit_interface_schur SOURCES unit/test_interface_schur.cpp LABELS unit NPROCS 1 2 3)
+strand_test(NAME unit_banded_block_lu SOURCES unit/test_banded_block_lu.cpp LABELS unit)
+target_include_directories(unit_banded_block_lu PRIVATE ${PROJECT_SOURCE_DIR}/src)  # an internal class
 strand_test(NAME unit_isotropic_mass SOURCES unit/test_isotropic_mass.cpp LABELS unit NPROCS 1 2)
