@@ -101,7 +101,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, SNESSetConvergenceTest(snes, roundoffFloorConvergence, &_floor, nullptr));
   PetscCallAbort(comm, useFullNewtonStep(snes, &_floor));  // no residual the step test discards
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
-  PetscCallAbort(comm, setDirectSolverDefaults(ksp, comm, _constrained));
+  PetscCallAbort(comm, setDirectSolverDefaults(ksp, _constrained));
   if (_constrainedSpace) {  // the assembled 2n x 2n Newton matrix, by the direct solver above
     PetscCallAbort(comm, _constrainedSpace->setImplicit(_ts));
     if (desc.adaptive) PetscCallAbort(comm, _constrainedSpace->setTolerances(_ts, desc.atol, desc.rtol));
@@ -189,7 +189,7 @@ PetscErrorCode Dynamics::createMassSolver(Vec X, KSP* ksp) {
   PetscCall(KSPSetOptionsPrefix(*ksp, "dyn_mass_"));
   PetscCall(KSPSetOperators(*ksp, S, S));
   PetscCall(MatDestroy(&S));
-  PetscCall(setDirectSolverDefaults(*ksp, comm, _constrained));
+  PetscCall(setDirectSolverDefaults(*ksp, _constrained));
   PetscCall(KSPSetFromOptions(*ksp));
   PetscFunctionReturn(0);
 }

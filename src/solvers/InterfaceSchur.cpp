@@ -182,12 +182,12 @@ PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar
 }
 
 // The interior solve's matrix, solver and work vectors (the split sweeps' LU is analyzed by
-// splitSweepsFit).
+// splitSweepsFit). Without an interface (one rank) A_II is A_d itself.
 PetscErrorCode prepareInteriorSolve(PC pc, SchurData* d, Mat Ad) {
   PetscFunctionBeginUser;
   PetscCall(createInteriorSolver(pc, d));
-  PetscCall(MatDuplicate(Ad, MAT_DO_NOT_COPY_VALUES, &d->interiorBlock));
-  PetscCall(MatCreateVecs(d->interiorBlock, &d->w, &d->t));
+  if (!d->interface.empty()) PetscCall(MatDuplicate(Ad, MAT_DO_NOT_COPY_VALUES, &d->interiorBlock));
+  PetscCall(MatCreateVecs(Ad, &d->w, &d->t));
   PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, d->rows, nullptr, &d->y));
   PetscFunctionReturn(0);
 }
@@ -206,10 +206,14 @@ PetscErrorCode clearLocalSolve(SchurData* d) {
 // failure is read after).
 PetscErrorCode factorInterior(SchurData* d, Mat Ad) {
   PetscFunctionBeginUser;
-  PetscCall(MatCopy(Ad, d->interiorBlock, SAME_NONZERO_PATTERN));
-  PetscCall(MatZeroRowsColumns(d->interiorBlock, static_cast<PetscInt>(d->interface.size()), d->interface.data(), 1.0,
-                               nullptr, nullptr));
-  PetscCall(KSPSetOperators(d->interiorSolver, d->interiorBlock, d->interiorBlock));
+  Mat interior = Ad;  // refactored when its values changed since the last factorization
+  if (d->interiorBlock) {
+    PetscCall(MatCopy(Ad, d->interiorBlock, SAME_NONZERO_PATTERN));
+    PetscCall(MatZeroRowsColumns(d->interiorBlock, static_cast<PetscInt>(d->interface.size()), d->interface.data(),
+                                 1.0, nullptr, nullptr));
+    interior = d->interiorBlock;
+  }
+  PetscCall(KSPSetOperators(d->interiorSolver, interior, interior));
   PetscCall(KSPSetUp(d->interiorSolver));
   PetscFunctionReturn(0);
 }

@@ -33,6 +33,7 @@ struct SchurData {
 
   // Interior solve. A_II as the local diagonal block with the interface rows and columns replaced
   // by the identity: no submatrix to extract, and its solution is zero on the interface rows.
+  // None without an interface (one rank): A_II is A_d.
   Mat interiorBlock = nullptr;
   // A_GI: for each own interface row, its entries in own interior columns (local column, value)
   std::vector<std::vector<std::pair<PetscInt, PetscScalar>>> agi;

@@ -35,12 +35,12 @@ PetscErrorCode alignPhase(Vec xr, Vec xi) {
   PetscFunctionReturn(0);
 }
 // Shift-and-invert about the target with the project's direct solver.
-PetscErrorCode useShiftInvert(ST st, MPI_Comm comm) {
+PetscErrorCode useShiftInvert(ST st) {
   PetscFunctionBeginUser;
   KSP ksp;
   PetscCall(STSetType(st, STSINVERT));
   PetscCall(STGetKSP(st, &ksp));
-  PetscCall(setDirectSolverDefaults(ksp, comm));
+  PetscCall(setDirectSolverDefaults(ksp));
   PetscFunctionReturn(0);
 }
 }  // namespace
@@ -143,7 +143,7 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
     PetscCall(EPSSetWhichEigenpairs(_eps, EPS_TARGET_MAGNITUDE));
     PetscCall(EPSSetTolerances(_eps, 1e-12, 200));
     PetscCall(EPSGetST(_eps, &st));
-    PetscCall(useShiftInvert(st, comm));
+    PetscCall(useShiftInvert(st));
     PetscCall(EPSSetOperators(_eps, _Kf, _Mf));
     PetscCall(EPSSetFromOptions(_eps));
   } else {
@@ -217,7 +217,7 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
     PetscCall(PEPSetWhichEigenpairs(_pep, PEP_TARGET_MAGNITUDE));
     PetscCall(PEPSetTolerances(_pep, 1e-12, 200));
     PetscCall(PEPGetST(_pep, &st));
-    PetscCall(useShiftInvert(st, comm));
+    PetscCall(useShiftInvert(st));
     PetscCall(PEPSetOperators(_pep, 3, A));
     PetscCall(PEPSetFromOptions(_pep));
   } else {

@@ -280,7 +280,7 @@ PetscErrorCode StateSpace::setImplicit(TS ts) {
     if (_damped) PetscCall(_asm.dofs().createMatrix(&_D, "dyn_reduced_"));
     PetscCall(KSPCreate(comm, &_reducedSolver));
     PetscCall(KSPSetOptionsPrefix(_reducedSolver, "dyn_reduced_"));
-    PetscCall(setDirectSolverDefaults(_reducedSolver, comm, false));
+    PetscCall(setDirectSolverDefaults(_reducedSolver, false));
     PetscCall(KSPSetFromOptions(_reducedSolver));
   }
   PetscCall(TSSetIFunction(ts, nullptr, iFunction, this));

@@ -8,25 +8,22 @@
 
 namespace strand::solvers {
 
-PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm, bool saddlePoint) {
+PetscErrorCode setDirectSolverDefaults(KSP ksp, bool saddlePoint) {
   PetscFunctionBeginUser;
-  PetscMPIInt size;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
   PC pc;
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(InterfaceSchurRegister());  // also on one rank, for -<prefix>pc_type strand_interface_schur
-  if (size > 1 && !saddlePoint) {
-    // per-rank banded LU plus the interface Schur complement (InterfaceSchur.hpp): at 1e5
-    // elements on two ranks ~20 times faster solves than MUMPS (docs/performance.md)
+  if (!saddlePoint) {
+    // Per-rank banded LU plus the interface Schur complement (InterfaceSchur.hpp): at 1e5 elements
+    // on two ranks ~20 times faster solves than MUMPS; on one rank (no interface) the banded LU of
+    // a chain, 5 % faster steps than PETSc's LU at 1e3 and 1e4 elements, and PETSc's LU with RCM
+    // ordering for any other matrix (docs/performance.md).
+    PetscCall(InterfaceSchurRegister());
     PetscCall(PCSetType(pc, kPcInterfaceSchur));
     PetscFunctionReturn(0);
   }
   PetscCall(PCSetType(pc, PCLU));
-  if (saddlePoint) PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  // RCM keeps the band of cable chains: at 1e5 elements 3.3 instead of 3.9 kB per element and
-  // 2.4 instead of 3.0 s against the default nested dissection (docs/performance.md).
-  else PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGRCM));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscFunctionReturn(0);
 }
 
@@ -48,7 +45,7 @@ StaticSolver::StaticSolver(assembly::Assembler& assembler, int loadSteps) : _asm
   PetscCallAbort(dofs.comm(), useFullNewtonStep(_snes, &_floor));  // no residual the step test discards
   KSP ksp;
   PetscCallAbort(dofs.comm(), SNESGetKSP(_snes, &ksp));
-  PetscCallAbort(dofs.comm(), setDirectSolverDefaults(ksp, dofs.comm(), assembler.hasConstraints()));
+  PetscCallAbort(dofs.comm(), setDirectSolverDefaults(ksp, assembler.hasConstraints()));
 }
 
 StaticSolver::~StaticSolver() {

@@ -104,7 +104,7 @@ inline double highestFrequency(const model::SceneDescription& sc) {
   PetscCallAbort(comm, EPSSetTolerances(eps, 1e-10, 1000));
   PetscCallAbort(comm, EPSGetST(eps, &st));
   PetscCallAbort(comm, STGetKSP(st, &ksp));
-  PetscCallAbort(comm, solvers::setDirectSolverDefaults(ksp, comm, false));
+  PetscCallAbort(comm, solvers::setDirectSolverDefaults(ksp, false));
   PetscCallAbort(comm, EPSSolve(eps));
   PetscInt nconv;
   PetscCallAbort(comm, EPSGetConverged(eps, &nconv));

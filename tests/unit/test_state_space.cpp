@@ -94,7 +94,7 @@ struct Fixture {
     PetscCallAbort(comm, MatDiagonalSet(Mmasked, supported, ADD_VALUES));
     PetscCallAbort(comm, KSPCreate(comm, &mass));
     PetscCallAbort(comm, KSPSetOperators(mass, Mmasked, Mmasked));
-    PetscCallAbort(comm, solvers::setDirectSolverDefaults(mass, comm, false));
+    PetscCallAbort(comm, solvers::setDirectSolverDefaults(mass, false));
     space = std::make_unique<solvers::StateSpace>(a, M, supported, mass, true);
     PetscCallAbort(comm, TSCreate(comm, &ts));
     PetscCallAbort(comm, TSSetType(ts, TSBDF));

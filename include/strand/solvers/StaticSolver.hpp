@@ -52,11 +52,13 @@ private:
   Vec _R = nullptr;
 };
 
-// Direct-solver defaults used by every Strand solver, set only where the user gave no option:
-// PETSc's LU with RCM ordering in serial; in parallel the interface Schur complement over per-rank
-// banded LUs (InterfaceSchur.hpp; MUMPS until session 13, design section 3).
+// Direct-solver defaults used by every Strand solver, set only where the user gave no option: the
+// interface Schur complement over per-rank banded LUs (InterfaceSchur.hpp; MUMPS in parallel until
+// session 13, design section 3), on one rank too (no interface: the banded LU of a chain, or
+// PETSc's LU with RCM ordering for another matrix; PETSc's LU with RCM was the serial default until
+// session 18).
 // saddlePoint: the matrix has zero diagonal blocks (Lagrange multipliers), so the factorization
 // must pivot: MUMPS on any number of ranks (PETSc's own LU does not pivot).
-PetscErrorCode setDirectSolverDefaults(KSP ksp, MPI_Comm comm, bool saddlePoint = false);
+PetscErrorCode setDirectSolverDefaults(KSP ksp, bool saddlePoint = false);
 
 }  // namespace strand::solvers
