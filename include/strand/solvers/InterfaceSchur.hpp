@@ -1,6 +1,6 @@
 #pragma once
 // An exact parallel direct solve for chains (cables, belts, tethers): the PETSc PC type
-// "strand_interface_schur", the parallel default of setDirectSolverDefaults.
+// "strand_interface_schur", the default of setDirectSolverDefaults for matrices without multipliers.
 //
 // Each rank owns a contiguous segment of the chain. A row is an *interface* row when it couples to
 // a column owned by another rank (a non-empty row of the off-process block of the MPI matrix);
@@ -10,7 +10,7 @@
 // for a structurally symmetric matrix, A_IG and A_GI couple each rank's interior only to its own
 // interface rows. The block elimination (Saad, "Iterative Methods for Sparse Linear Systems",
 // 2nd ed. 2003, sec. 14.2.1: the Schur complement on the interface unknowns) then needs
-//   - one sequential banded LU per rank, of its own interior (PETSc LU, RCM ordering), and
+//   - one sequential banded LU per rank, of its own interior, and
 //   - the interface Schur complement S = A_GG - sum_ranks A_GI A_II^{-1} A_IG, a dense matrix of
 //     the interface size only (12-18 unknowns per cut between two ranks of a 3D cable), held on
 //     every rank and factored redundantly:
@@ -18,21 +18,22 @@
 // Each rank solves its own segment one of two ways (src/solvers/InterfaceSchurData.hpp):
 //   - split sweeps, when its interface is at one end of the segment (the two end segments of the
 //     chain; every rank of a two-rank run): one LU of the whole local block with the interface
-//     last, and the interface solve between its forward and backward sweep, so an apply costs one
-//     local solve. DofMap numbers an end segment with its interface last, so the local block is
-//     factored as it is; a segment numbered the other way (interface first) factors a copy with
-//     its blocks reversed;
-//   - the interior solve otherwise (a middle segment): the LU of A_II (RCM), Z = A_II^{-1} A_IG
-//     kept, and an apply is one interior solve plus x_I -= Z x_G.
+//     last (our BandedBlockLu, src/solvers/BandedBlockLu.hpp, whose trailing blocks give L_GG and
+//     U_GG), and the interface solve between its forward and backward sweep, so an apply costs
+//     one local solve. DofMap numbers an end segment with its interface last, so the local block
+//     is factored in its own order; a segment numbered the other way (interface first) is
+//     factored with its blocks reversed. Without an interface (one rank) this is a plain banded LU;
+//   - the interior solve otherwise (a middle segment, a block not banded in its own order, blocks
+//     of more than 6 unknowns): PETSc's LU of A_II (RCM), Z = A_II^{-1} A_IG kept, and an apply is
+//     one interior solve plus x_I -= Z x_G.
 // Why: a chain's matrix is banded and a one-rank banded LU is already near-optimal; MUMPS's
 // distributed nested dissection adds its overheads for almost no parallel work (on two ranks its
 // solves took 20 times the one-rank LU's, docs/performance.md).
 //
 // Like PETSc's own LU it does not pivot: for saddle-point matrices (Lagrange multipliers) use
-// MUMPS. The local solver has the options prefix <pc prefix>schur_interior_ (default: preonly,
-// LU, natural ordering for split sweeps, RCM otherwise; another ordering, PC or package there turns
-// the split sweeps off, as do blocks larger than 3). Works on one rank too (no interface: a plain
-// LU).
+// MUMPS. The interior solve's local solver has the options prefix <pc prefix>schur_interior_
+// (default: preonly, LU, RCM ordering); -<pc prefix>pc_strand_interface_schur_split_sweeps false
+// makes every rank use it.
 #include <petscpc.h>
 
 namespace strand::solvers {
