@@ -27,6 +27,12 @@ namespace strand::solvers {
 
 class BandedBlockLu {
  public:
+  BandedBlockLu() = default;
+  BandedBlockLu(const BandedBlockLu&) = delete;  // _slot points into the object's own arrays
+  BandedBlockLu& operator=(const BandedBlockLu&) = delete;
+  BandedBlockLu(BandedBlockLu&&) = default;  // a vector's move keeps its array
+  BandedBlockLu& operator=(BandedBlockLu&&) = default;
+
   // block sizes with a compiled kernel
   static bool supports(PetscInt bs) { return bs >= 1 && bs <= 6; }
 
