@@ -70,6 +70,17 @@ PetscErrorCode BandedBlockLu::analyze(Mat A, bool reversed) {
   _slot.resize(ia[n]);
   for (PetscInt r = 0; r < n; ++r)
     for (PetscInt k = ia[r]; k < ia[r + 1]; ++k) _slot[k] = block(position(r), position(ja[k]));
+  // the blocks no entry of A fills (the fill, and absent diagonal blocks): zeroed at a factorization
+  std::vector<char> filled(_lowerStart[n] + _upperStart[n], 0);
+  const auto indexOf = [this, n](const PetscScalar* p) {  // the block's number, L's then U's
+    const bool lower = p >= _lower.data() && p < _lower.data() + _lower.size();
+    return (lower ? p - _lower.data() : p - _upper.data()) / (_bs * _bs) + (lower ? 0 : _lowerStart[n]);
+  };
+  for (PetscScalar* p : _slot) filled[indexOf(p)] = 1;
+  _fill.clear();
+  for (PetscInt i = 0; i < n; ++i)
+    for (PetscInt j = _first[i]; j <= _last[i]; ++j)
+      if (!filled[indexOf(block(i, j))]) _fill.push_back(block(i, j));
   PetscCall(MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_TRUE, &n, &ia, &ja, &done));
   PetscFunctionReturn(0);
 }
@@ -158,8 +169,7 @@ PetscErrorCode BandedBlockLu::factor(Mat A, PetscInt* zeroPivot) {
   PetscScalar* a;
   PetscFunctionBeginUser;
   const PetscInt bs2 = _bs * _bs;
-  std::fill(_lower.begin(), _lower.end(), 0.0);
-  std::fill(_upper.begin(), _upper.end(), 0.0);
+  for (PetscScalar* p : _fill) std::fill(p, p + bs2, 0.0);
   PetscCall(MatSeqBAIJGetArray(A, &a));
   for (size_t k = 0; k < _slot.size(); ++k) std::copy(a + bs2 * k, a + bs2 * (k + 1), _slot[k]);
   PetscCall(MatSeqBAIJRestoreArray(A, &a));

@@ -28,7 +28,7 @@ namespace strand::solvers {
 class BandedBlockLu {
  public:
   BandedBlockLu() = default;
-  BandedBlockLu(const BandedBlockLu&) = delete;  // _slot points into the object's own arrays
+  BandedBlockLu(const BandedBlockLu&) = delete;  // _slot and _fill point into the object's own arrays
   BandedBlockLu& operator=(const BandedBlockLu&) = delete;
   BandedBlockLu(BandedBlockLu&&) = default;  // a vector's move keeps its array
   BandedBlockLu& operator=(BandedBlockLu&&) = default;
@@ -59,6 +59,7 @@ class BandedBlockLu {
   std::vector<PetscInt> _first, _last, _lowerStart, _upperStart;
   std::vector<PetscScalar> _lower, _upper;  // bs x bs blocks, column-major: L_ij (j < i), U_ij (j >= i)
   std::vector<PetscScalar*> _slot;          // where A's k-th stored block goes
+  std::vector<PetscScalar*> _fill;          // the blocks A has none for
 
   PetscScalar* block(PetscInt i, PetscInt j) {
     const PetscInt bs2 = _bs * _bs;
