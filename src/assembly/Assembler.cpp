@@ -457,14 +457,13 @@ PetscErrorCode Assembler::supportMask(Vec mask) const {
 
 PetscErrorCode Assembler::saddleMatrix(Vec X, Mat S) {
   PetscFunctionBeginUser;
-  Vec xl;
-  const PetscScalar* x;
-  PetscCall(beginLocal(X, _xWork, &xl, &x));
+  LocalRead x;
+  PetscCall(beginLocal(X, _xWork, &x));
   PetscCall(MatZeroEntries(S));
   PetscCall(_impl->mass(S, _fixedLocal));
   PetscCall(_multibody->mass(S, _fixedLocal));
-  PetscCall(_multibody->jacobian(x, 1.0, 0.0, 0.0, S, _fixedLocal, true));
-  PetscCall(endLocal(_xWork, &xl, &x));
+  PetscCall(_multibody->jacobian(x.a, 1.0, 0.0, 0.0, S, _fixedLocal, true));
+  PetscCall(endLocal(&x));
   PetscCall(assembleWithSupportDiagonal(S));
   PetscFunctionReturn(0);
 }
@@ -472,21 +471,16 @@ PetscErrorCode Assembler::saddleMatrix(Vec X, Mat S) {
 PetscErrorCode Assembler::jointVector(Vec X, Vec W, const std::function<void(const double*, const double*, double*)>& add,
                                       Vec R) {
   PetscFunctionBeginUser;
-  Vec xl, wl, rl;
-  const PetscScalar *x, *w;
-  PetscScalar* r;
-  PetscCall(beginLocal(X, _xWork, &xl, &x));
-  PetscCall(beginLocal(W, _vWork, &wl, &w));
-  PetscCall(VecGhostGetLocalForm(_rWork, &rl));
-  PetscCall(VecSet(rl, 0.0));
-  PetscCall(VecGetArray(rl, &r));
-  add(x, w, r);
-  PetscCall(VecRestoreArray(rl, &r));
-  PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
-  PetscCall(addGhostsToOwners(_rWork));
-  PetscCall(endLocal(_xWork, &xl, &x));
-  PetscCall(endLocal(_vWork, &wl, &w));
-  PetscCall(VecCopy(_rWork, R));
+  LocalRead x, w;
+  LocalSum r;
+  PetscCall(beginLocal(X, _xWork, &x));
+  PetscCall(beginLocal(W, _vWork, &w));
+  PetscCall(beginLocalSum(R, {X, W}, &r));
+  add(x.a, w.a, r.a);
+  PetscCall(endLocalSum(&r));
+  PetscCall(endLocal(&x));
+  PetscCall(endLocal(&w));
+  PetscCall(deliver(r, R));
   PetscFunctionReturn(0);
 }
 
@@ -502,15 +496,14 @@ PetscErrorCode Assembler::constraintGradientProduct(Vec X, Vec W, Vec R) {
 
 PetscErrorCode Assembler::constraintGradientMatrices(Vec X, Vec W, Mat C, Mat dC) {
   PetscFunctionBeginUser;
-  Vec xl, wl;
-  const PetscScalar *x, *w;
-  PetscCall(beginLocal(X, _xWork, &xl, &x));
-  PetscCall(beginLocal(W, _vWork, &wl, &w));
+  LocalRead x, w;
+  PetscCall(beginLocal(X, _xWork, &x));
+  PetscCall(beginLocal(W, _vWork, &w));
   for (Mat A : {C, dC})
     if (A) PetscCall(MatZeroEntries(A));
-  PetscCall(_multibody->gradientProductJacobian(x, w, _constraintScale, C, dC, _fixedLocal));
-  PetscCall(endLocal(_xWork, &xl, &x));
-  PetscCall(endLocal(_vWork, &wl, &w));
+  PetscCall(_multibody->gradientProductJacobian(x.a, w.a, _constraintScale, C, dC, _fixedLocal));
+  PetscCall(endLocal(&x));
+  PetscCall(endLocal(&w));
   for (Mat A : {C, dC})
     if (A) {
       PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
@@ -521,14 +514,13 @@ PetscErrorCode Assembler::constraintGradientMatrices(Vec X, Vec W, Mat C, Mat dC
 
 PetscErrorCode Assembler::constraintViolation(Vec X, Vec V, PetscReal* position, PetscReal* velocity) {
   PetscFunctionBeginUser;
-  Vec xl, vl;
-  const PetscScalar *x, *v;
-  PetscCall(beginLocal(X, _xWork, &xl, &x));
-  PetscCall(beginLocal(V, _vWork, &vl, &v));
+  LocalRead x, v;
+  PetscCall(beginLocal(X, _xWork, &x));
+  PetscCall(beginLocal(V, _vWork, &v));
   double local[2];
-  _multibody->violation(x, v, &local[0], &local[1]);
-  PetscCall(endLocal(_xWork, &xl, &x));
-  PetscCall(endLocal(_vWork, &vl, &v));
+  _multibody->violation(x.a, v.a, &local[0], &local[1]);
+  PetscCall(endLocal(&x));
+  PetscCall(endLocal(&v));
   double global[2];
   PetscCallMPI(MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, _dofs.comm()));
   *position = global[0];
@@ -536,13 +528,53 @@ PetscErrorCode Assembler::constraintViolation(Vec X, Vec V, PetscReal* position,
   PetscFunctionReturn(0);
 }
 
-// Copy `from` into the ghosted work vector `work`, update its ghosts, expose its local form.
-PetscErrorCode Assembler::beginLocal(Vec from, Vec work, Vec* local, const PetscScalar** a) {
+// The ghosted local form of `from`: its own, ghosts updated in place, when it has our layout (its
+// owned values stay as they are, so a read-locked input is fine); else a copy in `work`.
+PetscErrorCode Assembler::beginLocal(Vec from, Vec work, LocalRead* view) {
+  bool own;
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(from, work));
-  PetscCall(updateGhosts(work));
-  PetscCall(VecGhostGetLocalForm(work, local));
-  PetscCall(VecGetArrayRead(*local, a));
+  PetscCall(_dofs.sharesGhosts(from, &own));
+  view->owner = own ? from : work;
+  if (!own) PetscCall(VecCopy(from, work));
+  PetscCall(updateGhosts(view->owner));
+  PetscCall(VecGhostGetLocalForm(view->owner, &view->local));
+  PetscCall(VecGetArrayRead(view->local, &view->a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::endLocal(LocalRead* view) {
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArrayRead(view->local, &view->a));
+  PetscCall(VecGhostRestoreLocalForm(view->owner, &view->local));
+  PetscFunctionReturn(0);
+}
+
+// A zeroed ghosted local form to sum element contributions into: R's own when R has our layout
+// and is none of the inputs being read, else _rWork's.
+PetscErrorCode Assembler::beginLocalSum(Vec R, std::initializer_list<Vec> inputs, LocalSum* sum) {
+  bool own;
+  PetscFunctionBeginUser;
+  PetscCall(_dofs.sharesGhosts(R, &own));
+  for (Vec in : inputs) own = own && in != R;
+  sum->owner = own ? R : _rWork;
+  PetscCall(VecGhostGetLocalForm(sum->owner, &sum->local));
+  PetscCall(VecSet(sum->local, 0.0));
+  PetscCall(VecGetArray(sum->local, &sum->a));
+  PetscFunctionReturn(0);
+}
+
+// The ghosts' sums added to their owners: sum->owner holds the owned result.
+PetscErrorCode Assembler::endLocalSum(LocalSum* sum) {
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArray(sum->local, &sum->a));
+  PetscCall(VecGhostRestoreLocalForm(sum->owner, &sum->local));
+  PetscCall(addGhostsToOwners(sum->owner));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::deliver(const LocalSum& sum, Vec R) {
+  PetscFunctionBeginUser;
+  if (sum.owner != R) PetscCall(VecCopy(sum.owner, R));
   PetscFunctionReturn(0);
 }
 
@@ -564,13 +596,6 @@ PetscErrorCode Assembler::addGhostsToOwners(Vec work) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::endLocal(Vec work, Vec* local, const PetscScalar** a) {
-  PetscFunctionBeginUser;
-  PetscCall(VecRestoreArrayRead(*local, a));
-  PetscCall(VecGhostRestoreLocalForm(work, local));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
   PetscFunctionBeginUser;
   PetscCall(assembleResidual(X, nullptr, loadFactor, R, SupportRows::Value));
@@ -587,31 +612,26 @@ PetscErrorCode Assembler::residual(Vec X, Vec V, PetscReal t, Vec R, SupportRows
 PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R, SupportRows rows) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evResidual, 0, 0, 0, 0));
-  Vec xl, rl, vl = nullptr;
-  const PetscScalar* x;
-  const PetscScalar* v = nullptr;
-  PetscScalar* r;
-  PetscCall(beginLocal(X, _xWork, &xl, &x));
-  if (V) PetscCall(beginLocal(V, _vWork, &vl, &v));
-  PetscCall(VecGhostGetLocalForm(_rWork, &rl));
-  PetscCall(VecSet(rl, 0.0));
-  PetscCall(VecGetArray(rl, &r));
-  PetscCallCXX(_impl->residual(x, v, loadFactor, r));
-  PetscCallCXX(_multibody->residual(x, _constraintScale, loadFactor, r));
-  PetscCall(VecRestoreArray(rl, &r));
-  PetscCall(VecGhostRestoreLocalForm(_rWork, &rl));
-  PetscCall(addGhostsToOwners(_rWork));
+  LocalRead x, v;
+  LocalSum r;
+  PetscCall(beginLocal(X, _xWork, &x));
+  if (V) PetscCall(beginLocal(V, _vWork, &v));
+  PetscCall(beginLocalSum(R, {X, V}, &r));
+  PetscCallCXX(_impl->residual(x.a, v.a, loadFactor, r.a));
+  PetscCallCXX(_multibody->residual(x.a, _constraintScale, loadFactor, r.a));
+  PetscCall(endLocalSum(&r));
   // owned rows: nodal forces and supports
-  PetscCall(VecGetArray(_rWork, &r));
+  PetscScalar* owned;
+  PetscCall(VecGetArray(r.owner, &owned));
   const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();
-  for (PetscInt i = 0; i < n; ++i) r[i] -= loadFactor * _nodalForceOwned[i];
+  for (PetscInt i = 0; i < n; ++i) owned[i] -= loadFactor * _nodalForceOwned[i];
   if (rows == SupportRows::Value)
     for (PetscInt i = 0; i < n; ++i)
-      if (_fixedLocal[i]) r[i] = x[i];
-  PetscCall(VecRestoreArray(_rWork, &r));
-  PetscCall(endLocal(_xWork, &xl, &x));
-  if (V) PetscCall(endLocal(_vWork, &vl, &v));
-  PetscCall(VecCopy(_rWork, R));
+      if (_fixedLocal[i]) owned[i] = x.a[i];
+  PetscCall(VecRestoreArray(r.owner, &owned));
+  PetscCall(endLocal(&x));
+  if (V) PetscCall(endLocal(&v));
+  PetscCall(deliver(r, R));
   PetscCall(PetscLogEventEnd(evResidual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -630,13 +650,12 @@ PetscErrorCode Assembler::assembleWithSupportDiagonal(Mat J) const {
 PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evJacobian, 0, 0, 0, 0));
-  Vec xl;
-  const PetscScalar* x;
-  PetscCall(beginLocal(X, _xWork, &xl, &x));
+  LocalRead x;
+  PetscCall(beginLocal(X, _xWork, &x));
   PetscCall(MatZeroEntries(J));
-  PetscCall(_impl->jacobian(x, loadFactor, J, _fixedLocal));
-  PetscCall(_multibody->jacobian(x, _constraintScale, 0.0, loadFactor, J, _fixedLocal));
-  PetscCall(endLocal(_xWork, &xl, &x));
+  PetscCall(_impl->jacobian(x.a, loadFactor, J, _fixedLocal));
+  PetscCall(_multibody->jacobian(x.a, _constraintScale, 0.0, loadFactor, J, _fixedLocal));
+  PetscCall(endLocal(&x));
   PetscCall(assembleWithSupportDiagonal(J));
   PetscCall(PetscLogEventEnd(evJacobian, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -645,18 +664,16 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
 PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evDynJacobian, 0, 0, 0, 0));
-  Vec xl, vl = nullptr;
-  const PetscScalar* x;
-  const PetscScalar* v = nullptr;
-  PetscCall(beginLocal(X, _xWork, &xl, &x));
-  if (V) PetscCall(beginLocal(V, _vWork, &vl, &v));
+  LocalRead x, v;
+  PetscCall(beginLocal(X, _xWork, &x));
+  if (V) PetscCall(beginLocal(V, _vWork, &v));
   PetscCall(MatZeroEntries(J));
   if (D) PetscCall(MatZeroEntries(D));
   const double loadFactor = _model.loadFactor(t);
-  PetscCall(_impl->dynamicJacobian(x, v, loadFactor, shiftV, shiftA, J, D, _fixedLocal));
-  PetscCall(_multibody->jacobian(x, _constraintScale, shiftA, loadFactor, J, _fixedLocal));
-  PetscCall(endLocal(_xWork, &xl, &x));
-  if (V) PetscCall(endLocal(_vWork, &vl, &v));
+  PetscCall(_impl->dynamicJacobian(x.a, v.a, loadFactor, shiftV, shiftA, J, D, _fixedLocal));
+  PetscCall(_multibody->jacobian(x.a, _constraintScale, shiftA, loadFactor, J, _fixedLocal));
+  PetscCall(endLocal(&x));
+  if (V) PetscCall(endLocal(&v));
   PetscCall(assembleWithSupportDiagonal(J));
   if (D) {
     PetscCall(MatAssemblyBegin(D, MAT_FINAL_ASSEMBLY));
@@ -747,11 +764,10 @@ PetscErrorCode Assembler::gyroscopicMatrix(Mat G) {
 
 PetscErrorCode Assembler::strainEnergy(Vec X, PetscReal* U) {
   PetscFunctionBeginUser;
-  Vec xl;
-  const PetscScalar* x;
-  PetscCall(beginLocal(X, _xWork, &xl, &x));
-  double local = _impl->strainEnergy(x);
-  PetscCall(endLocal(_xWork, &xl, &x));
+  LocalRead x;
+  PetscCall(beginLocal(X, _xWork, &x));
+  double local = _impl->strainEnergy(x.a);
+  PetscCall(endLocal(&x));
   PetscCallMPI(MPI_Allreduce(&local, U, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
   PetscFunctionReturn(0);
 }

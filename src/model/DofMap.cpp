@@ -197,8 +197,26 @@ PetscInt DofMap::localBlock(PetscInt g) const {
 
 PetscErrorCode DofMap::createVector(Vec* v) const {
   PetscFunctionBeginUser;
-  PetscCall(VecCreateGhostBlock(_comm, _bs, ownedBlocks() * _bs, PETSC_DECIDE, static_cast<PetscInt>(_ghosts.size()),
-                                _ghosts.data(), v));
+  if (!_prototype) {
+    Vec p;
+    PetscCall(VecCreateGhostBlock(_comm, _bs, ownedBlocks() * _bs, PETSC_DECIDE,
+                                  static_cast<PetscInt>(_ghosts.size()), _ghosts.data(), &p));
+    _prototype.reset(p, [](Vec x) { VecDestroy(&x); });
+  }
+  PetscCall(VecDuplicate(_prototype.get(), v));  // zero, like a new vector
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DofMap::sharesGhosts(Vec v, bool* shares) const {
+  ISLocalToGlobalMapping mine, theirs;
+  PetscFunctionBeginUser;
+  *shares = false;
+  if (!_prototype) PetscFunctionReturn(0);
+  PetscCall(VecGetLocalToGlobalMapping(_prototype.get(), &mine));
+  PetscCall(VecGetLocalToGlobalMapping(v, &theirs));
+  // duplicates share the layout and with it the mapping object (PETSc's VecDuplicate_MPI), which
+  // was created collectively: the pointer test gives the same answer on every rank
+  *shares = theirs == mine;
   PetscFunctionReturn(0);
 }
 

@@ -12,3 +12,4 @@ strand_test(NAME unit_interface_schur SOURCES unit/test_interface_schur.cpp LABE
 strand_test(NAME unit_banded_block_lu SOURCES unit/test_banded_block_lu.cpp LABELS unit)
 target_include_directories(unit_banded_block_lu PRIVATE ${PROJECT_SOURCE_DIR}/src)  # an internal class
 strand_test(NAME unit_isotropic_mass SOURCES unit/test_isotropic_mass.cpp LABELS unit NPROCS 1 2)
+strand_test(NAME unit_assembler_local_forms SOURCES unit/test_assembler_local_forms.cpp LABELS unit NPROCS 1 2)

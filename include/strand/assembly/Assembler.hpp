@@ -9,6 +9,7 @@
 #include <petscmat.h>
 
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <vector>
 
@@ -114,10 +115,25 @@ public:
   struct Impl;  // dimension-specific kernels (Assembler.cpp)
 
 private:
-  // Copy `from` into the ghosted work vector (_xWork or _vWork), update its ghosts, and expose its
-  // local form (read only); endLocal restores it.
-  PetscErrorCode beginLocal(Vec from, Vec work, Vec* local, const PetscScalar** a);
-  PetscErrorCode endLocal(Vec work, Vec* local, const PetscScalar** a);
+  // The ghosted local form of a global vector, read only. A vector of our DofMap (all the solvers'
+  // vectors) has its ghosts updated in place; any other is copied into a work vector (_xWork or
+  // _vWork) first. endLocal restores it.
+  struct LocalRead {
+    Vec owner = nullptr, local = nullptr;
+    const PetscScalar* a = nullptr;
+  };
+  PetscErrorCode beginLocal(Vec from, Vec work, LocalRead* view);
+  PetscErrorCode endLocal(LocalRead* view);
+  // Element sums into a zeroed ghosted local form: R's own when R is a vector of our DofMap and not
+  // one of the inputs, else _rWork's. endLocalSum adds the ghosts to their owners (owner then holds the owned result, for
+  // edits of owned rows); deliver copies it into R when _rWork was used.
+  struct LocalSum {
+    Vec owner = nullptr, local = nullptr;
+    PetscScalar* a = nullptr;
+  };
+  PetscErrorCode beginLocalSum(Vec R, std::initializer_list<Vec> inputs, LocalSum* sum);
+  PetscErrorCode endLocalSum(LocalSum* sum);
+  PetscErrorCode deliver(const LocalSum& sum, Vec R);
   // Owned values to the ghosts, and the ghosts' contributions added to their owners; no-ops when no
   // rank has ghosts (one rank): a scatter costs 1.4 us, 8 per step of a small dynamic run.
   PetscErrorCode updateGhosts(Vec work);

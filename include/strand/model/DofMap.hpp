@@ -9,6 +9,8 @@
 #pragma once
 #include <petscmat.h>
 
+#include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "strand/model/Model.hpp"
@@ -41,8 +43,13 @@ public:
   // ghosted-local index of a global block, or -1 when this rank neither owns nor ghosts it
   PetscInt localBlock(PetscInt globalBlock) const;
 
-  // Ghosted block vector with this layout.
+  // Ghosted block vector with this layout. All are duplicates of one vector, so they share its
+  // local-to-global mapping and ghost scatter: sharesGhosts() tells such a vector in O(1), and the
+  // assembler updates its ghosts in place instead of copying it (Assembler::beginLocal).
   PetscErrorCode createVector(Vec* v) const;
+  // Whether v came from createVector() of this map (or is a duplicate of such a vector); the same
+  // answer on every rank.
+  PetscErrorCode sharesGhosts(Vec v, bool* shares) const;
   // Matrix with exact preallocation and MAT_NEW_NONZERO_ALLOCATION_ERR; of type defaultType unless
   // -<prefix>mat_type says otherwise. BAIJ (block = one node vector) is the memory-lean default.
   PetscErrorCode createMatrix(Mat* A, const char* prefix, MatType defaultType = MATBAIJ) const;
@@ -54,6 +61,8 @@ private:
   std::vector<int> _localElements, _localCouplings;
   std::vector<PetscInt> _cplOffset, _cplLocal, _cplGlobal;
   std::vector<PetscInt> _dnnz, _onnz;  // block preallocation of owned block rows
+  // the vector createVector() duplicates, made on first use; shared by copies of the map
+  mutable std::shared_ptr<std::remove_pointer_t<Vec>> _prototype;
 };
 
 }  // namespace strand::model
