@@ -215,8 +215,13 @@ PetscErrorCode DofMap::sharesGhosts(Vec v, bool* shares) const {
   PetscCall(VecGetLocalToGlobalMapping(_prototype.get(), &mine));
   PetscCall(VecGetLocalToGlobalMapping(v, &theirs));
   // duplicates share the layout and with it the mapping object (PETSc's VecDuplicate_MPI), which
-  // was created collectively: the pointer test gives the same answer on every rank
-  *shares = theirs == mine;
+  // was created collectively: the pointer test gives the same answer on every rank. A vector that
+  // only took the mapping (MatCreateVecs of a matrix given it) has no ghost slots: not ours.
+  if (theirs != mine) PetscFunctionReturn(0);
+  Vec local;
+  PetscCall(VecGhostGetLocalForm(v, &local));
+  *shares = local != nullptr;
+  PetscCall(VecGhostRestoreLocalForm(v, &local));
   PetscFunctionReturn(0);
 }
 

@@ -3,7 +3,7 @@
 // other vector goes through a work copy. Both ways must give the same numbers, bit for bit, and
 // leave the inputs' owned values alone, at -n 1 and -n 2 (where the ghosts are real):
 //  1. vectors from DofMap::createVector and their duplicates share the layout's ghosts; a plain
-//     vector of the same sizes does not;
+//     vector of the same sizes does not, even when given the layout's local-to-global mapping;
 //  2. the damped dynamic residual, the strain energy and the Newton matrix of a cable with rigid
 //     bodies, joints and a nodal moment (every term that reads X and V) are equal both ways;
 //  3. a joint product whose output is one of its inputs (R = W) gives the result of a separate R.
@@ -73,6 +73,12 @@ TEST(AssemblerLocalForms, VectorsOfTheLayoutShareItsGhostsAndOthersDoNot) {
   EXPECT_TRUE(shares);
   PetscCallAbort(comm(), p.dofs().sharesGhosts(b, &shares));
   EXPECT_TRUE(shares);
+  PetscCallAbort(comm(), p.dofs().sharesGhosts(plain, &shares));
+  EXPECT_FALSE(shares);
+  // the layout's mapping alone does not make a vector ours: it needs the ghost slots
+  ISLocalToGlobalMapping mapping;
+  PetscCallAbort(comm(), VecGetLocalToGlobalMapping(a, &mapping));
+  PetscCallAbort(comm(), VecSetLocalToGlobalMapping(plain, mapping));
   PetscCallAbort(comm(), p.dofs().sharesGhosts(plain, &shares));
   EXPECT_FALSE(shares);
   for (Vec* v : {&a, &b, &plain}) VecDestroy(v);
