@@ -25,7 +25,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, dofs.createMatrix(&_M, "dyn_mass_"));
   PetscCallAbort(comm, dofs.createMatrix(&_J, "dyn_"));
   PetscCallAbort(comm, assembler.massMatrix(_M, false));
-  PetscCallAbort(comm, MatCreateVecs(_M, nullptr, &_fext));
+  PetscCallAbort(comm, dofs.createVector(&_fext));  // its duplicates are the assembler's own layout (no copies)
   {  // only products with M from here on: the compact M_s (x) I when the mass is isotropic
     Mat op;
     PetscBool compact;

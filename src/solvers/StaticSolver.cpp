@@ -30,7 +30,7 @@ PetscErrorCode setDirectSolverDefaults(KSP ksp, bool saddlePoint) {
 StaticSolver::StaticSolver(assembly::Assembler& assembler, int loadSteps) : _asm(assembler), _loadSteps(loadSteps) {
   const model::DofMap& dofs = assembler.dofs();
   PetscCallAbort(dofs.comm(), dofs.createMatrix(&_J, "static_"));
-  PetscCallAbort(dofs.comm(), MatCreateVecs(_J, nullptr, &_R));
+  PetscCallAbort(dofs.comm(), dofs.createVector(&_R));  // the assembler sums into it in place
   PetscCallAbort(dofs.comm(), SNESCreate(dofs.comm(), &_snes));
   PetscCallAbort(dofs.comm(), SNESSetOptionsPrefix(_snes, "static_"));
   PetscCallAbort(dofs.comm(), SNESSetFunction(_snes, _R, formFunction, this));

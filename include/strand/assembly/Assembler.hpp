@@ -115,8 +115,9 @@ public:
   struct Impl;  // dimension-specific kernels (Assembler.cpp)
 
 private:
-  // The ghosted local form of a global vector, read only. A vector of our DofMap (all the solvers'
-  // vectors) has its ghosts updated in place; any other is copied into a work vector (_xWork or
+  // The ghosted local form of a global vector, read only. A vector of our DofMap (from
+  // DofMap::createVector or a duplicate of one: the solvers' vectors but the first-order state's
+  // halves) has its ghosts updated in place; any other is copied into a work vector (_xWork or
   // _vWork) first. endLocal restores it.
   struct LocalRead {
     Vec owner = nullptr, local = nullptr;
