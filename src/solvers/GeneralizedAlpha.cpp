@@ -161,6 +161,13 @@ PetscErrorCode step(TS ts) {
       if (again) ts->reject++;
     }
     PetscCall(TSAdaptCheckStage(ts->adapt, ts, ts->ptime + h, X1, &accept));
+    // the next step (fixed unless an adaptor is chosen; stretched or cut to land on the final time);
+    // an adaptor that rejects this one has the step retried with its size
+    PetscReal next = h;
+    if (accept) {
+      PetscCall(TSAdaptChoose(ts->adapt, ts, h, nullptr, &next, &accept));
+      if (!accept) ts->time_step = next;
+    }
     if (accept) {
       PetscCall(stageVectors(ts, X1));  // V1, A1 of the converged X1
       if (d->differential)  // multipliers have no rate: the predictor keeps their last value
@@ -168,14 +175,12 @@ PetscErrorCode step(TS ts) {
       PetscCall(VecCopy(d->V1, ts->vec_dot));
       std::swap(d->A, d->A1);  // A1, a1 are rewritten by the next stageVectors
       std::swap(d->a, d->a1);
-      // the next step (fixed unless an adaptor is chosen; stretched or cut to land on the final time)
-      PetscReal next = h;
-      PetscCall(TSAdaptChoose(ts->adapt, ts, h, nullptr, &next, &accept));
       ts->ptime += h;
       ts->time_step = next;
       break;
     }
     PetscCall(VecCopy(d->X0, ts->vec_sol));  // reject: back to the start of the step
+    fresh = PETSC_TRUE;
     ts->reject++;
     if (ts->reason) break;  // too many Newton failures (TSSetMaxSNESFailures)
     if (++rejections > ts->max_reject && ts->max_reject >= 0) {
