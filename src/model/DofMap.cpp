@@ -94,9 +94,9 @@ std::vector<char> interfaceBlocks(const std::vector<PetscInt>& gptr, const std::
 
 // A part whose interface blocks are exactly its first blocks in model order, and not its last: an
 // end segment of a chain cut at its start. Numbered in reverse, its interface comes last, and the
-// parallel direct solve factors its local block as it is (the split sweeps of
-// InterfaceSchurSweeps.cpp) instead of a reversed copy at every factorization and solve. Reversal
-// keeps the band of the local block: |i - j| is unchanged.
+// parallel direct solve's split sweeps (InterfaceSchurSweeps.cpp) take its vectors as they are
+// instead of reordering b and x at every apply. Reversal keeps the band of the local block:
+// |i - j| is unchanged.
 bool interfaceIsPrefixOnly(const std::vector<int>& members, const std::vector<char>& onInterface) {
   size_t count = 0;
   for (int b : members) count += onInterface[b];

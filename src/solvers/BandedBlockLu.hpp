@@ -50,8 +50,6 @@ class BandedBlockLu {
   // The trailing m x m parts of L and U (m a multiple of the block size), in factor order.
   void trailingFactors(PetscInt m, Eigen::MatrixXd* L, Eigen::MatrixXd* U) const;
 
-  PetscInt blockSize() const { return _bs; }
-  PetscInt rows() const { return _bs * _n; }
 
  private:
   PetscInt _bs = 0, _n = 0;

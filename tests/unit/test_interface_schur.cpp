@@ -223,6 +223,26 @@ TEST(InterfaceSchur, SplitSweepsSwitchedOffSolveByTheInteriorSolve) {
   PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsClearValue(nullptr, "-schur_interior_pc_factor_mat_ordering_type"));
 }
 
+// The option switched after the set-up, the operator unchanged: the next solve rebuilds the PC the
+// other way (both ways exact), instead of applying the cleared one (PCApply sets up a PC whose
+// set-up was undone).
+TEST(InterfaceSchur, SplitSweepsSwitchedAfterTheSetUpRebuildTheSolve) {
+  NewtonCantilever c;
+  KSP schur = solverFor(c.A, false);
+  const int interiorByDefault = ranksSolving(schur, solvers::SegmentSolve::InteriorSolve);  // middle segments
+  EXPECT_LT(interiorByDefault, size());  // the end segments sweep
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsSetValue(nullptr, "-pc_strand_interface_schur_split_sweeps", "false"));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetFromOptions(schur));
+  expectExactSolves(schur, c.A, "split sweeps switched off after the set-up");
+  EXPECT_EQ(ranksSolving(schur, solvers::SegmentSolve::InteriorSolve), size());
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsSetValue(nullptr, "-pc_strand_interface_schur_split_sweeps", "true"));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetFromOptions(schur));
+  expectExactSolves(schur, c.A, "split sweeps switched on again");
+  EXPECT_EQ(ranksSolving(schur, solvers::SegmentSolve::InteriorSolve), interiorByDefault);
+  KSPDestroy(&schur);
+  PetscCallAbort(PETSC_COMM_WORLD, PetscOptionsClearValue(nullptr, "-pc_strand_interface_schur_split_sweeps"));
+}
+
 // 61 nodes of two 3-unknown blocks (r, r'), partitioned by METIS by block: a cut between two nodes
 // is spanned by one element, whose two nodes are the interface (12 unknowns); a cut between a
 // node's r and r' blocks by the two elements at that node (three nodes, 18 unknowns). Every other
@@ -231,15 +251,13 @@ TEST(InterfaceSchur, TheInterfaceIsTheTwoNodesOfEachCutElement) {
   NewtonCantilever c;
   KSP ksp = solverFor(c.A, false);
   PC pc;
-  PetscMPIInt size;
   PetscInt interface, interior, total;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
   PetscCallAbort(PETSC_COMM_WORLD, KSPSetUp(ksp));
   PetscCallAbort(PETSC_COMM_WORLD, KSPGetPC(ksp, &pc));
   PetscCallAbort(PETSC_COMM_WORLD, solvers::InterfaceSchurGetSizes(pc, &interface, &interior));
   MPI_Allreduce(&interior, &total, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
-  EXPECT_GE(interface, 12 * (size - 1));
-  EXPECT_LE(interface, 18 * (size - 1));
+  EXPECT_GE(interface, 12 * (size() - 1));
+  EXPECT_LE(interface, 18 * (size() - 1));
   EXPECT_EQ(interface % 3, 0);
   EXPECT_EQ(total + interface, 61 * 6);
   KSPDestroy(&ksp);
