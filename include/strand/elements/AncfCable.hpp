@@ -72,16 +72,6 @@ public:
     }
     return sl;
   }
-  static Slots slotsAt(const Geometry& geo, const CableShapeTable& tab, int g) {
-    if (!(geo.points && geo.pointsOf == &tab)) return slots(geo, tab.at[g]);
-    Slots sl;
-    for (int a = 0; a < 4; ++a) {
-      sl.N[a] = geo.points->N[a][g];
-      sl.B1[a] = geo.points->B1[a][g];
-      sl.B2[a] = geo.points->B2[a][g];
-    }
-    return sl;
-  }
 
   // The slots at all points of tab as a structure of arrays (CablePointTable.hpp).
   static CablePointTable pointTable(const Geometry& geo, const CableShapeTable& tab) {
@@ -94,7 +84,6 @@ public:
       const Slots sl = slots(geo, tab.at[g < t.count ? g : t.count - 1]);
       t.wl[g] = g < t.count ? tab.rule.w[g] * geo.length : 0.0;
       for (int a = 0; a < 4; ++a) {
-        t.N[a][g] = sl.N[a];
         t.B1[a][g] = sl.B1[a];
         t.B2[a][g] = sl.B2[a];
         t.wB1[a][g] = t.wl[g] * sl.B1[a];
@@ -196,7 +185,7 @@ public:
   static void mass(const CableSection& sec, const Geometry& geo, const CableShapeTable& tab, double* M) {
     double m[4][4] = {};
     for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slotsAt(geo, tab, g);
+      const Slots sl = slots(geo, tab.at[g]);
       const double wl = tab.rule.w[g] * geo.length * sec.rhoA;
       for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b) m[a][b] += wl * sl.N[a] * sl.N[b];
@@ -219,7 +208,7 @@ public:
   static void distributedLoad(const Geometry& geo, const CableShapeTable& tab, const double* p, double* f) {
     for (int k = 0; k < kDof; ++k) f[k] = 0.0;
     for (int g = 0; g < tab.size(); ++g) {
-      const Slots sl = slotsAt(geo, tab, g);
+      const Slots sl = slots(geo, tab.at[g]);
       const double wl = tab.rule.w[g] * geo.length;
       for (int a = 0; a < 4; ++a)
         for (int i = 0; i < D; ++i) f[a * D + i] += wl * sl.N[a] * p[i];
@@ -547,7 +536,7 @@ private:
     }
     S m[kCurv], mu(0.0);
     for (int ci = 0; ci < kCurv; ++ci) {
-      m[ci] = sec.EI * (c[ci] * A - (D == 2 ? k0 : 0.0));
+      m[ci] = sec.EI * (c[ci] * A - k0);
       if (Gd) m[ci] += sec.EI * sec.dampBending * (A * dc[ci] - 3.0 * B * c[ci] * stretchRate);
       mu += m[ci] * c[ci];
     }
@@ -641,7 +630,7 @@ private:
     for (int ci = 0; ci < kCurv; ++ci) {
       for (int k = 0; k < kG; ++k) J[ci][k] = A * cG[ci][k];
       for (int i = 0; i < D; ++i) J[ci][i] -= 3.0 * c[ci] * B * G[i];
-      moment[ci] = sec.EI * (c[ci] * A - (D == 2 ? k0 : 0.0));
+      moment[ci] = sec.EI * (c[ci] * A - k0);
       if (Gd) {
         double kDot = 0.0;
         for (int k = 0; k < kG; ++k) kDot += J[ci][k] * Gd[k];

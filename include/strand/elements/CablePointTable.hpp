@@ -11,7 +11,7 @@ struct CablePointTable {
   static constexpr int kMax = 8;  // the scene reader allows 2..8 Gauss points
   int count = 0;                  // Gauss points
   int padded = 0;                 // count rounded up to even
-  double N[4][kMax], B1[4][kMax], B2[4][kMax];  // slot values and x-derivatives
+  double B1[4][kMax], B2[4][kMax];              // slot x-derivatives (the kernels need no values)
   double wl[kMax];                              // Gauss weight times element length; 0 on the padding
   double wB1[4][kMax], wB2[4][kMax];            // wl B1, wl B2: the chain rule's weights
 };
