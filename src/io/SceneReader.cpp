@@ -1032,11 +1032,7 @@ private:
       }
       if (const Field ax = item.child("rotation_axis"); ax.present()) {
         if (!r.driven) ax.fail("'rotation_axis' is the axis of a driven rotation; give 'rotation' too");
-        r.rotationAxis = readVector(ax, 3);
-        const double n = std::sqrt(r.rotationAxis[0] * r.rotationAxis[0] + r.rotationAxis[1] * r.rotationAxis[1] +
-                                   r.rotationAxis[2] * r.rotationAxis[2]);
-        if (n == 0.0) ax.fail("the rotation axis must not be zero");
-        for (double& c : r.rotationAxis) c /= n;
+        r.rotationAxis = readDirection(ax, 3);
       }
       scene_.rigidBodies.push_back(std::move(r));
     }

@@ -38,6 +38,16 @@ inline model::TimeValue drive(double t) {
   return {kDriveAmplitude * s, kDriveAmplitude * kDriveOmega * c, -kDriveAmplitude * kDriveOmega * kDriveOmega * s};
 }
 
+// The same drive as the scene's time function (a hub's `rotation`).
+inline model::TimeFunction driveFunction() {
+  model::TimeFunction f;
+  f.kind = model::TimeFunction::Kind::Sine;
+  f.amplitude = kDriveAmplitude;
+  f.frequency = kDriveOmega / (2.0 * M_PI);
+  f.phase = kDrivePhase;
+  return f;
+}
+
 struct CarriedLink {
   double startVelocity = 0.0;  // |G v| at t = 0
   double startTorque = 0.0, startForce = 0.0;  // |error| at t = 0, relative to the peak torque / force
@@ -131,10 +141,7 @@ inline CarriedLink carryLink(const model::DynamicsDesc& d) {
   hub.inertia = kHubInertia;
   hub.fixed = {0, 1};
   hub.driven = true;
-  hub.rotation.kind = model::TimeFunction::Kind::Sine;
-  hub.rotation.amplitude = kDriveAmplitude;
-  hub.rotation.frequency = kDriveOmega / (2.0 * M_PI);
-  hub.rotation.phase = kDrivePhase;
+  hub.rotation = driveFunction();
   sc.rigidBodies.push_back(hub);
   model::RigidBodyDesc link;
   link.name = "link";

@@ -891,7 +891,7 @@ TEST(SceneReader, RigidBodiesAndJoints) {
   EXPECT_TRUE(failsWith(edit(driven3d, "rotation: {function: linear, rate: 2}, ", ""), 3,
                         "rigid_bodies[0].rotation_axis", "give 'rotation' too"));
   EXPECT_TRUE(failsWith(edit(driven3d, "[0, 3, 4]", "[0, 0, 0]"), 3, "rigid_bodies[0].rotation_axis",
-                        "must not be zero"));
+                        "must not be the zero vector"));
   // the explicit integrators take no joints (no multipliers); the message says what to use; bdf
   // takes them on the GGL form or (constraint_form: index3) the plain index-3 form
   const std::string pinned =

@@ -300,13 +300,9 @@ namespace {
 // the torque taken from the support force on the hub's axes a_k as tau = sum_k a_k x f_k
 // (virtual work f_k . (dtheta x a_k) = dtheta . a_k x f_k); and T - T(0) = W_drive.
 struct DrivenHub3d {
-  static constexpr double kHubMass = 10.0, kLinkMass = 3.0, kAmplitude = 0.5, kOmega = M_PI, kPhase = M_PI / 4.0;
+  static constexpr double kHubMass = 10.0;  // the link's mass and the drive psi: CarriedLink.hpp's
   model::Vec3 e{1.0 / std::sqrt(5.0), 0.0, 2.0 / std::sqrt(5.0)};
   model::Vec3 I{2.0, 3.0, 4.0}, p{0.8, 0.3, -0.2};
-  model::TimeValue psi(double t) const {
-    const double s = std::sin(kOmega * t + kPhase), c = std::cos(kOmega * t + kPhase);
-    return {kAmplitude * s, kAmplitude * kOmega * c, -kAmplitude * kOmega * kOmega * s};
-  }
   double axialInertia() const {  // e^T I e + m |p_perp|^2
     const double pe = p[0] * e[0] + p[1] * e[1] + p[2] * e[2];
     double perp2 = 0.0, eIe = 0.0;
@@ -327,10 +323,7 @@ struct DrivenHub3d {
     hub.principalInertia = I;
     hub.fixed = {0, 1, 2};
     hub.driven = true;
-    hub.rotation.kind = model::TimeFunction::Kind::Sine;
-    hub.rotation.amplitude = kAmplitude;
-    hub.rotation.frequency = kOmega / (2.0 * M_PI);
-    hub.rotation.phase = kPhase;
+    hub.rotation = driveFunction();
     hub.rotationAxis = e;
     sc.rigidBodies.push_back(hub);
     model::RigidBodyDesc link;
@@ -346,16 +339,16 @@ struct DrivenHub3d {
 
 // The largest errors of a run against the exact motion (tests/support/CarriedLink.hpp).
 CarriedLink runDrivenHub(const DrivenHub3d& c, const model::DynamicsDesc& d) {
-  const double peak = c.kAmplitude * c.kOmega * c.kOmega;  // |psi''| max (and |psi'|^2 max)
+  const double peak = kDriveAmplitude * kDriveOmega * kDriveOmega;  // |psi''| max (and |psi'|^2 max)
   const double peakTorque = c.axialInertia() * peak;
   const double radius = std::sqrt(c.p[0] * c.p[0] + c.p[1] * c.p[1] + c.p[2] * c.p[2]);
   // scales: |x''| <= |p| (|psi''| + psi'^2) <= 2 |p| a w^2 (a <= 1); T <= J_e (a w)^2 / 2
-  const double peakForce = c.kLinkMass * radius * 2.0 * peak;
-  const double peakKinetic = 0.5 * c.axialInertia() * std::pow(c.kAmplitude * c.kOmega, 2);
-  const double psi0 = c.psi(0.0).f;
+  const double peakForce = kLinkMass * radius * 2.0 * peak;
+  const double peakKinetic = 0.5 * c.axialInertia() * std::pow(kDriveAmplitude * kDriveOmega, 2);
+  const double psi0 = drive(0.0).f;
   auto exact = [&](const model::Model& m, double t, const std::vector<double>& q, const std::vector<double>& f) {
     const model::RigidBody &h = m.rigidBodies()[0], &l = m.rigidBodies()[1];
-    const model::TimeValue s = c.psi(t);
+    const model::TimeValue s = drive(t);
     const model::Vec3 x = turn(rotation(c.e, s.f - psi0), c.p);
     // x'' = psi'' e x x + psi'^2 e x (e x x)
     const model::Vec3 ex{c.e[1] * x[2] - c.e[2] * x[1], c.e[2] * x[0] - c.e[0] * x[2], c.e[0] * x[1] - c.e[1] * x[0]};
@@ -363,7 +356,7 @@ CarriedLink runDrivenHub(const DrivenHub3d& c, const model::DynamicsDesc& d) {
     double dx = 0.0, df = 0.0;
     for (int i = 0; i < 3; ++i) {
       dx += std::pow(q[l.posBlock * 3 + i] - x[i], 2);
-      df += std::pow(f[h.posBlock * 3 + i] - c.kLinkMass * (s.ddf * ex[i] + s.df * s.df * eex[i]), 2);
+      df += std::pow(f[h.posBlock * 3 + i] - kLinkMass * (s.ddf * ex[i] + s.df * s.df * eex[i]), 2);
     }
     double tau = 0.0;  // e . sum_k a_k x f_k
     for (int k = 0; k < 3; ++k) {
