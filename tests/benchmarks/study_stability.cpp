@@ -5,13 +5,20 @@
 // For each scheme, bisection on h (12 halvings of the bracket) for the largest step whose run of
 // -t_end seconds (default 0.05 s) ends without a stop (blow-up guard or Newton failure). Explicit:
 // RK4 (theory h omega_max = 2 sqrt(2)); ABM4 (unstable on undamped modes at every h over long runs:
-// its "largest stable step" shrinks with the run length, shown for the same 0.05 s). Implicit
-// (generalized-alpha rho 0.9, Newmark, BDF2): checked at h = 100 / omega_max and 1e-2 s, where they
-// must run. One JSON line per (scheme, model).
+// its "largest stable step" shrinks with the run length, shown for the same 0.05 s). A-stable
+// implicit schemes (generalized-alpha rho 0.9, Newmark, HHT, BDF1, BDF2): checked at
+// h = 100 / omega_max and 1e-2 s, where they must run. BDF3-5 are not A-stable: an undamped mode
+// grows while h omega lies in a band on the imaginary axis (largest root of
+// rho(zeta) - i h omega sigma(zeta) above 1: 0-1.94 for BDF3, 0-4.71 for BDF4, 0.71-9.39 for BDF5;
+// Hairer & Wanner, Solving ODEs II, Sec. V.2), and the band holds every mode with h omega in it,
+// not only the highest: runs of -t_end_bdf seconds (default 0.5 s: the growth per step is at most
+// 4.6 %, 19 %, 38 %, and a high mode starts near round-off) at h omega_max = 0.25 ... 128 (factors
+// of 2), recorded as run or stopped. One JSON line per (scheme, model).
 #include <petscsys.h>
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "strand/solvers/Dynamics.hpp"
 #include "support/Pendulum.hpp"
@@ -28,10 +35,14 @@ bool runs(const model::SceneDescription& sc, model::DynamicsDesc d) {
 
 }  // namespace
 
+// Upper edge of the band of h omega on the imaginary axis where BDF3, 4, 5 amplify (see the top).
+double bdfBandEdge(int order) { return order == 3 ? 1.9359 : order == 4 ? 4.7137 : 9.3914; }
+
 int main(int argc, char** argv) {
   PetscCall(SlepcInitialize(&argc, &argv, nullptr, nullptr));
-  PetscReal tEnd = 0.05;
+  PetscReal tEnd = 0.05, tEndBdf = 0.5;
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-t_end", &tEnd, nullptr));
+  PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-t_end_bdf", &tEndBdf, nullptr));
   for (int elements : {2, 4, 8, 16}) {
     const model::SceneDescription sc = flexiblePendulum(0.0, 1e8, elements);
     const double omega = highestFrequency(sc);
@@ -45,16 +56,34 @@ int main(int argc, char** argv) {
       }
       PetscCall(PetscPrintf(PETSC_COMM_WORLD,
                             "{\"study\": \"stability\", \"scheme\": \"%s\", \"elements\": %d, \"omega_max\": %.6e, "
-                            "\"t_end\": %.3e, \"h_max\": %.6e, \"h_omega\": %.4f, \"theory_h_omega\": %s}\n",
+                            "\"t_end\": %.3e, \"limit\": \"largest_stable\", \"h_limit\": %.6e, \"h_omega\": %.4f, "
+                            "\"theory_h_omega\": %s}\n",
                             name, elements, omega, tEnd, lo, lo * omega,
                             integrator == model::Integrator::Rk4 ? "2.8284" : "null"));
     }
-    for (const char* name : {"generalized_alpha", "newmark", "bdf2"}) {
-      model::DynamicsDesc d = scheme(std::string(name) == "newmark" ? model::Integrator::Newmark
-                                     : std::string(name) == "bdf2"  ? model::Integrator::Bdf
-                                                                    : model::Integrator::GeneralizedAlpha,
+    for (int order : {3, 4, 5}) {
+      model::DynamicsDesc d = scheme(model::Integrator::Bdf, 1.0, 0.0, tEndBdf);
+      d.bdfOrder = order;
+      std::string hw, ok;
+      for (double x : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0}) {
+        d.dt = x / omega;
+        hw += (hw.empty() ? "" : ", ") + std::to_string(x).substr(0, 6);
+        ok += (ok.empty() ? "" : ", ") + std::string(runs(sc, d) ? "true" : "false");
+      }
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                            "{\"study\": \"stability_band\", \"scheme\": \"bdf%d\", \"elements\": %d, \"omega_max\": %.6e, "
+                            "\"t_end\": %.3e, \"h_omega\": [%s], \"runs\": [%s], \"theory_band\": [%.4f, %.4f]}\n",
+                            order, elements, omega, tEndBdf, hw.c_str(), ok.c_str(), order == 5 ? 0.7110 : 0.0,
+                            bdfBandEdge(order)));
+    }
+    for (const char* name : {"generalized_alpha", "newmark", "hht", "bdf1", "bdf2"}) {
+      const std::string n = name;
+      model::DynamicsDesc d = scheme(n == "newmark" ? model::Integrator::Newmark
+                                     : n == "hht"   ? model::Integrator::Hht
+                                     : n.rfind("bdf", 0) == 0 ? model::Integrator::Bdf
+                                                              : model::Integrator::GeneralizedAlpha,
                                      0.9, 0, tEnd);
-      d.bdfOrder = 2;
+      d.bdfOrder = n == "bdf1" ? 1 : 2;
       const double h1 = 100.0 / omega, h2 = 1e-2;
       d.dt = h1;
       const bool ok1 = runs(sc, d);
