@@ -151,9 +151,12 @@ TEST(ParallelAgreement, RotatingSweepWithCoriolis) {
 // A long flexible chain (issue 3): 12 cables of 0.25 m (2 elements each, EA = 1e4 N, EI = 1 N m^2)
 // joined end to end by pin joints (Lagrange multipliers), the first pinned to the ground, released
 // horizontally under gravity; generalized-alpha rho_inf = 0.9, h = 1 ms, 0.3 s. The tip trajectory
-// on all ranks must match the serial one at every step. Tolerance: Newton converges to
-// |du| < 1e-12 |q| per step (LU vs MUMPS round-off, amplified by the chain's dynamics over 300
-// steps): 1e-8 m is asserted, against a tip travel of 0.4 m.
+// on all ranks must match the serial one at every step. Tolerance: the two runs solve with
+// different factorizations (one banded LU against the interface Schur solve), so their Newton
+// iterates differ by round-off, and at worst a stopping decision flips and one run stops with the
+// error left, |du| < 1e-12 |q0| (|q0| = 12.0 here: 36 nodes' positions and unit slopes), in a
+// step where the other takes one more iteration. Steps where that happens are few (measured: none,
+// 6e-14 m); 1e-9 m, 80 such steps' worth, is asserted, against a tip travel of 0.4 m.
 TEST(ParallelAgreement, LongFlexibleChainTrajectory) {
   const int links = 12;
   const double l = 0.25;
@@ -219,6 +222,6 @@ TEST(ParallelAgreement, LongFlexibleChainTrajectory) {
   for (size_t k = 0; k < par.size(); ++k) diff = std::max(diff, std::fabs(par[k] - ser[k]));
   std::printf("chain tip at t = 0.3 s: (%.9f, %.9f); max difference distributed vs serial over %zu steps: %.2e m\n",
               par[par.size() - 2], par.back(), par.size() / 2, diff);
-  EXPECT_LT(diff, 1e-8);
+  EXPECT_LT(diff, 1e-9);
   EXPECT_GT(std::hypot(par[par.size() - 2] - links * l, par.back()), 0.1);  // it did swing
 }
