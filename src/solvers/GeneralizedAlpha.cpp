@@ -5,7 +5,6 @@
 
 #include <petsc/private/tsimpl.h>
 
-#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -25,7 +24,6 @@ struct AlphaData {
   Vec startOffset = nullptr;   // added to V0 in the next step only (perturbed starting values)
   Vec differential = nullptr;  // 0 on algebraic entries (multipliers), 1 elsewhere; null: none
   int predictor = 2;           // X1 = X0 (0), + h V0 (1), + h^2/2 A0 (2)
-  int startPredictor = 1;      // at most this one in a run's first step (step number 0)
   RetryFn retry = nullptr;
   void* retryCtx = nullptr;
 };
@@ -134,16 +132,11 @@ PetscErrorCode step(TS ts) {
     Vec X1 = ts->vec_sol;
     for (PetscBool again = PETSC_TRUE; again;) {
       again = PETSC_FALSE;
-      // predictor: constant acceleration (or velocity, or displacement). The first step of a run
-      // starts from A0 solved from M A0 = -R(X0, V0), which is not smooth in space when a load is
-      // applied suddenly (slope part g / l_e next to a support): extrapolated, it kinks the first
-      // elements of a fine mesh and starts Newton outside its basin (docs/performance.md), so
-      // that step predicts at most with the velocity; the A0 of later steps is the scheme's own.
-      const int predictor = ts->steps == 0 ? std::min(d->predictor, d->startPredictor) : d->predictor;
+      // predictor: constant acceleration (or velocity, or displacement)
       if (!fresh) PetscCall(VecCopy(d->X0, X1));
       fresh = PETSC_FALSE;
-      if (predictor >= 1) PetscCall(VecAXPY(X1, h, d->V0));
-      if (predictor >= 2) PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
+      if (d->predictor >= 1) PetscCall(VecAXPY(X1, h, d->V0));
+      if (d->predictor >= 2) PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
       if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, nullptr, nullptr, d->prescribeCtx));
       PetscCall(TSPreStage(ts, d->stageTime));
       PetscCall(SNESSolve(ts->snes, nullptr, X1));
@@ -159,9 +152,9 @@ PetscErrorCode step(TS ts) {
       // for the rest of the run (a suddenly loaded fine mesh: the extrapolated acceleration
       // kinks the elements at a support and starts Newton outside its basin, docs/performance.md)
       if (d->retry) PetscCall(d->retry(d->retryCtx, &again));
-      if (predictor > 0) {
+      if (d->predictor > 0) {
         PetscCall(PetscInfo(ts, "Newton failed at t = %g from the %s predictor; from X0 from now on\n",
-                            static_cast<double>(ts->ptime + h), predictor == 2 ? "acceleration" : "velocity"));
+                            static_cast<double>(ts->ptime + h), d->predictor == 2 ? "acceleration" : "velocity"));
         d->predictor = 0;
         again = PETSC_TRUE;
       }
@@ -261,10 +254,6 @@ PetscErrorCode setFromOptions(TS ts, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsEList("-ts_strand_alpha_predictor", "Newton start: X0, X0 + h V0, or X0 + h V0 + h^2/2 A0",
                               "", predictors, 3, predictors[which], &which, nullptr));
   d->predictor = static_cast<int>(which);
-  which = d->startPredictor;
-  PetscCall(PetscOptionsEList("-ts_strand_alpha_start_predictor", "The most the first step of a run predicts with", "",
-                              predictors, 3, predictors[which], &which, nullptr));
-  d->startPredictor = static_cast<int>(which);
   PetscOptionsHeadEnd();
   PetscFunctionReturn(0);
 }

@@ -32,12 +32,10 @@
 //     into the support force (measured: the drive torque of a hub started by a sine, 0.6 % off at
 //     h = 1 ms and first order; tests/verification/test_multibody.cpp);
 //   - predictor X1 = X0 + h V0 + h^2/2 A0 (constant acceleration) instead of X1 = X0
-//     (-ts_strand_alpha_predictor displacement | velocity | acceleration). The first step of a
-//     run predicts at most X0 + h V0 (-ts_strand_alpha_start_predictor, default velocity): its A0
-//     is the consistent start acceleration, which a suddenly applied load makes non-smooth next
-//     to a support, and extrapolated it starts Newton outside its basin on fine, stiff meshes
-//     (docs/performance.md). When Newton fails, the step is tried once more from X1 = X0
-//     (counted as a rejected step), and the displacement predictor is kept from then on;
+//     (-ts_strand_alpha_predictor displacement | velocity | acceleration; displacement is the
+//     robust start for fine, stiff meshes under suddenly applied loads, docs/performance.md).
+//     When Newton fails, the step is tried once more from X1 = X0 (counted as a rejected step),
+//     and the displacement predictor is kept from then on;
 //   - index-3 constraints (Arnold & Bruls 2007, Sec. 4): Lagrange multipliers are entries of X
 //     marked algebraic; their rows hold s g(q1) at t_{n+1}, so the position constraints hold to
 //     Newton tolerance at every step (no drift).
