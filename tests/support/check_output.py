@@ -1,16 +1,26 @@
 #!/usr/bin/python3
 """Check a Strand output file (HDF5 + XDMF) and print a one-line JSON summary.
 
-usage: check_output.py FILE.h5 [--pvpython]
+usage: check_output.py FILE.h5 [FILE.h5 ...] [--pvpython] | --compare-final A.h5 B.h5
 
 Checks the layout written by strand::io::OutputWriter (include/strand/io/OutputWriter.hpp):
 root attributes, /bodies/<body>/connectivity, /frames/NNNNN/<body>/{centerline,coordinates}
-(present for every body, right shapes, finite), /series, /modes, and that every HDF reference in
-<stem>.xmf and <stem>_modes.xmf names an existing dataset of the stated dimensions.
+(present for every body, right shapes, finite), /series (one length for all), /modes, and that
+every HDF reference in <stem>.xmf and <stem>_modes.xmf names an existing dataset of the stated
+dimensions. A scene of rigid bodies only has an empty /bodies (its state is in /series/rigid_*).
 With --pvpython it also opens the .xmf files with ParaView's Xdmf3 reader when ParaView's Python
 modules (python3-paraview) or a pvpython executable are available, and skips that step otherwise.
+Several files: one JSON line each.
 
-Exit status: 0 all checks passed, 1 some check failed, 2 the file cannot be opened.
+--compare-final A.h5 B.h5 compares the final states of two dynamic runs of one scene (e.g. an
+uninterrupted run and a restarted one): the last frame's nodal coordinates of every body and the
+last row of every /series/rigid_* and of /series/kinetic_energy (velocity level), and prints
+{"time": [tA, tB], "max_abs": ..., "max_rel": ..., "rel2": ..., "kinetic_rel": ...}: max_rel =
+max_abs / (the largest |value| of A's state: coordinates and rigid coordinates), rel2 = |A - B| / |A|
+in the 2-norm (the norm of Strand's Newton test), kinetic_rel the relative difference of the kinetic
+energies.
+
+Exit status: 0 all checks passed, 1 some check failed, 2 a file cannot be opened.
 Uses the Debian python3-h5py, hence /usr/bin/python3 (not a pyenv python3 without h5py).
 """
 import importlib.util
@@ -172,8 +182,10 @@ def last_bounds(h5, modes):
     names = sorted(k for k in g.keys() if k != "frequencies_hz") if g is not None else []
     if not names:
         return None
-    pts = np.concatenate([b["centerline"][()] for b in g[names[-1]].values()
-                          if isinstance(b, h5py.Group) and "centerline" in b])
+    parts = [b["centerline"][()] for b in g[names[-1]].values() if isinstance(b, h5py.Group) and "centerline" in b]
+    if not parts:  # rigid bodies only: nothing drawn
+        return None
+    pts = np.concatenate(parts)
     return [float(v) for pair in zip(pts.min(axis=0), pts.max(axis=0)) for v in pair]
 
 
@@ -184,7 +196,8 @@ def check_file(h5, path, summary, errors):
 
     # bodies
     layouts = {}
-    if "bodies" not in h5 or len(h5["bodies"]) == 0:
+    rigid_only = any(k.startswith("rigid_") for k in h5.get("series", {}).keys())
+    if "bodies" not in h5 or (len(h5["bodies"]) == 0 and not rigid_only):
         errors.append("/bodies: missing or empty")
     else:
         for name, g in h5["bodies"].items():
@@ -241,6 +254,8 @@ def check_file(h5, path, summary, errors):
             continue
         series[name] = int(d.shape[0])
     summary["series"] = series
+    if len(set(series.values())) > 1:  # every series gets one value per step
+        errors.append("/series: datasets of different lengths %s" % sorted(set(series.values())))
 
     # modes
     if "modes" in h5:
@@ -284,13 +299,53 @@ def check_file(h5, path, summary, errors):
     return xmfs, expected
 
 
+def final_state(h5):
+    """(time, state vector, kinetic energy) at the end of a dynamic run's output."""
+    frames = h5["frames"]
+    last = frames[sorted(frames.keys())[-1]]
+    parts = [last[b]["coordinates"][()].ravel() for b in sorted(last.keys())]
+    s = h5["series"]
+    parts += [np.array([s[k][-1]]) for k in sorted(s.keys()) if k.startswith("rigid_")]
+    state = np.concatenate(parts) if parts else np.zeros(0)
+    return float(s["time"][-1]), float(last.attrs["time"]), state, float(s["kinetic_energy"][-1])
+
+
+def compare_final(a, b):
+    try:
+        fa, fb = h5py.File(a, "r"), h5py.File(b, "r")
+    except OSError as e:
+        print(json.dumps({"ok": False, "errors": ["cannot open: %s" % e]}))
+        return 2
+    with fa, fb:
+        ta, tfa, xa, ka = final_state(fa)
+        tb, tfb, xb, kb = final_state(fb)
+    out = {"time": [ta, tb], "frame_time": [tfa, tfb], "size": int(xa.size)}
+    if xa.shape != xb.shape or xa.size == 0:
+        out.update(ok=False, errors=["states of sizes %d and %d" % (xa.size, xb.size)])
+        print(json.dumps(out))
+        return 1
+    scale = float(np.abs(xa).max())
+    diff = float(np.abs(xa - xb).max())
+    out.update(scale=scale, max_abs=diff, max_rel=diff / scale,
+               rel2=float(np.linalg.norm(xa - xb) / np.linalg.norm(xa)),
+               kinetic=[ka, kb], kinetic_rel=abs(ka - kb) / max(abs(ka), 1e-300), ok=True)
+    print(json.dumps(out))
+    return 0
+
+
 def main(argv):
     args = [a for a in argv[1:] if not a.startswith("--")]
     flags = {a for a in argv[1:] if a.startswith("--")}
-    if len(args) != 1 or flags - {"--pvpython"}:
+    if flags == {"--compare-final"} and len(args) == 2:
+        return compare_final(*args)
+    if not args or flags - {"--pvpython"}:
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
         return 2
-    path = args[0]
+    codes = [check_one(path, flags) for path in args]
+    return max(codes)
+
+
+def check_one(path, flags):
     errors = []
     summary = {"file": path}
     try:
