@@ -6,7 +6,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <limits>
+#include <regex>
 #include <sstream>
 
 #include "support/Cli.hpp"
@@ -27,6 +31,67 @@ bodies:
     geometry: {kind: line, start: [0, 0], end: [1, 0]}
     section: {E: 2.1e11, A: 1e-4, I: 1e-8, rho: 7850}
 )";
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The scene text with everything from "dynamics:" on replaced (the shipped dynamic scenes end with
+// their dynamics section).
+std::string withDynamics(const std::string& text, const std::string& dynamics) {
+  std::string t = text;
+  t.replace(t.find("dynamics:"), std::string::npos, "dynamics: " + dynamics + "\n");
+  return t;
+}
+
+// Runs a Python snippet (Debian's python3 with h5py and numpy) on `args`; the snippet is written to
+// `dir`, so it needs no shell quoting.
+CliResult python(const fs::path& dir, const std::string& code, const std::string& args) {
+  const fs::path script = dir / "snippet.py";
+  writeFile(script, code);
+  return runCommand("/usr/bin/python3 " + script.string() + " " + args);
+}
+
+// The number after `key` in `text` (e.g. "rows=" or "\"rel2\": "), NaN when absent.
+double numberAfter(const std::string& text, const std::string& key) {
+  const size_t p = text.find(key);
+  if (p == std::string::npos) return std::numeric_limits<double>::quiet_NaN();
+  return std::strtod(text.c_str() + p + key.size(), nullptr);
+}
+
+// A planar chain of `links` uniform rigid rods (length l, mass m, J = m l^2 / 12) along +x from the
+// origin, pinned to the ground and to each other end to end, under gravity: the scene of
+// tests/support/Scenes.hpp rigidChain() as YAML, without its dynamics section.
+std::string chainScene(int links, double l, double m) {
+  char buf[256];
+  std::string s = "analysis: dynamic\ndimension: 2\nrigid_bodies:\n";
+  for (int k = 0; k < links; ++k) {
+    std::snprintf(buf, sizeof buf, "  - {name: link%d, mass: %.17g, inertia: %.17g, position: [%.17g, 0]}\n", k, m,
+                  m * l * l / 12.0, (k + 0.5) * l);
+    s += buf;
+  }
+  s += "joints:\n";
+  for (int k = 0; k < links; ++k) {
+    if (k == 0)
+      std::snprintf(buf, sizeof buf, "  - {type: revolute, a: {body: link0, point: [%.17g, 0]}, b: {ground: [0, 0]}}\n",
+                    -0.5 * l);
+    else
+      std::snprintf(buf, sizeof buf,
+                    "  - {type: revolute, a: {body: link%d, point: [%.17g, 0]}, b: {body: link%d, point: [%.17g, 0]}}\n",
+                    k, -0.5 * l, k - 1, 0.5 * l);
+    s += buf;
+  }
+  return s + "loads: {gravity: [0, -9.81]}\n";
+}
+
+// What a run that stopped left in its file: status, rows of /series, frames, the last series time,
+// and whether tests/support/check_output.py accepts the layout (one length for every series, ...).
+const char* kStoppedFile = R"PY(import sys, h5py
+f = h5py.File(sys.argv[1], 'r')
+s = f['series']
+print('status=%s rows=%d frames=%d last=%.17g' % (f.attrs['status'], len(s['time']), f['frames'].attrs['count'], s['time'][-1]))
+)PY";
 }  // namespace
 
 TEST(Cli, HelpAndUsage) {
@@ -333,6 +398,68 @@ TEST(Cli, FirstOrderIntegratorsRunAndAnUnstableExplicitStepStopsCleanly) {
                         "'); print(f.attrs['status'], f['frames'].attrs['count'] >= 1)\"");
     EXPECT_NE(h.output.find("diverged True"), std::string::npos) << h.output;
   }
+  fs::remove_all(dir);
+}
+
+// requirement (issue 3, "Methods where they fail"): index-3 BDF with the multipliers in the error
+// norm and the trapezoidal rule on index 3 (generalized-alpha at rho_inf = 1) stop through the CLI
+// as cleanly as RK4 above its limit (test above): exit code 3; a message that says which method
+// stopped, at what time, why and what to try; and an output file that h5py opens, with status
+// 'diverged' and the steps so far in /series and /frames (check_output.py accepts its layout). Why
+// the methods fail, and the same stops in the library: tests/verification/test_multibody.cpp
+// (IndexThreeBdfWithMultipliersInTheErrorNormStopsWithAnExplanation,
+// UndampedMemberOnTheChainStopsWithAnExplanation).
+TEST(Cli, IndexThreeFailuresStopWithAnExplanationAndAReadableFile) {
+  const fs::path dir = scratchDir("index3-failures");
+  // The stop time named by the message ("stopped at t = X s", printed with %g) is before t_end,
+  // and it is the last time in the file: the file keeps every step up to the stop.
+  auto expectStoppedFile = [&](const fs::path& h5, const std::string& message, double tEnd) {
+    const double stopped = numberAfter(message, "stopped at t = ");
+    EXPECT_GT(stopped, 0.0) << message;
+    EXPECT_LT(stopped, tEnd) << message;
+    EXPECT_NE(message.find("output so far: " + h5.string() + " (readable, status = diverged)"), std::string::npos)
+        << message;
+    ASSERT_TRUE(fs::exists(h5));
+    if (!haveH5py()) return;
+    auto h = python(dir, kStoppedFile, h5.string());
+    ASSERT_EQ(h.exitCode, 0) << h.output;  // h5py opens it
+    EXPECT_NE(h.output.find("status=diverged "), std::string::npos) << h.output;
+    EXPECT_GE(numberAfter(h.output, "rows="), 2) << h.output;    // the initial state and at least one step
+    EXPECT_GE(numberAfter(h.output, "frames="), 1) << h.output;  // at least the initial frame
+    // %g prints 6 significant digits: the same time to 1e-5 relative
+    EXPECT_NEAR(numberAfter(h.output, "last="), stopped, 1e-5 * stopped) << h.output << message;
+    auto c = runCommand("/usr/bin/python3 " + sourceDir() + "/tests/support/check_output.py " + h5.string());
+    EXPECT_EQ(c.exitCode, 0) << c.output;
+  };
+
+  // (a) BDF2, adaptive, constraint_form: index3 on the compound pendulum: the error estimate of the
+  // multiplier does not fall with the step, so the controller shrinks the step to its floor
+  // (measured: stopped at t = 7.55e-4 s after 10 steps, 25 rejections).
+  const fs::path bdf = dir / "index3-bdf.yaml";
+  writeFile(bdf, withDynamics(readText(sourceDir() + "/meshes/compound-pendulum.yaml"),
+                              "{integrator: bdf, adaptive: true, constraint_form: index3, dt: 1e-3, t_end: 1.0}"));
+  auto a = runCommand(strandBinary() + " run " + bdf.string() + " -o " + (dir / "index3-bdf.h5").string());
+  EXPECT_EQ(a.exitCode, 3) << a.output;
+  EXPECT_NE(a.output.find("BDF2 (adaptive step) stopped at t = "), std::string::npos) << a.output;  // which, when
+  EXPECT_NE(a.output.find("the adaptive step collapsed"), std::string::npos) << a.output;          // what happened
+  EXPECT_NE(a.output.find("error estimate of the multipliers does not fall with the step"), std::string::npos)
+      << a.output;                                                                                 // why
+  EXPECT_NE(a.output.find("Use constraint_form: ggl"), std::string::npos) << a.output;             // what to try
+  expectStoppedFile(dir / "index3-bdf.h5", a.output, 1.0);
+
+  // (b) generalized-alpha at rho_inf = 1 (the trapezoidal rule on linear problems) on the 20-link
+  // chain (0.1 m, 0.1 kg links): the multipliers' error is not damped and grows until Newton fails
+  // (measured: stopped at t = 0.517 s, step 517, Newton DIVERGED_MAX_IT).
+  const fs::path chain = dir / "chain-trapezoidal.yaml";
+  writeFile(chain, chainScene(20, 0.1, 0.1) +
+                       "dynamics: {integrator: generalized_alpha, rho_inf: 1, dt: 1e-3, t_end: 1.0, output_every: 50}\n");
+  auto b = runCommand(strandBinary() + " run " + chain.string() + " -o " + (dir / "chain-trapezoidal.h5").string());
+  EXPECT_EQ(b.exitCode, 3) << b.output;
+  EXPECT_NE(b.output.find("generalized-alpha stopped at t = "), std::string::npos) << b.output;  // which, when
+  EXPECT_NE(b.output.find("Joints are index-3 constraints"), std::string::npos) << b.output;     // why
+  EXPECT_NE(b.output.find("no high-frequency damping (rho_inf = 1"), std::string::npos) << b.output;
+  EXPECT_NE(b.output.find("Use rho_inf <= 0.9"), std::string::npos) << b.output;                 // what to try
+  expectStoppedFile(dir / "chain-trapezoidal.h5", b.output, 1.0);
   fs::remove_all(dir);
 }
 
