@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Check a Strand output file (HDF5 + XDMF) and print a one-line JSON summary.
 
-usage: check_output.py FILE.h5 [FILE.h5 ...] [--pvpython] | --compare-final A.h5 B.h5
+usage: check_output.py FILE.h5 [FILE.h5 ...] [--pvpython] | --compare-final A.h5 B.h5 [A2.h5 B2.h5 ...]
 
 Checks the layout written by strand::io::OutputWriter (include/strand/io/OutputWriter.hpp):
 root attributes, /bodies/<body>/connectivity, /frames/NNNNN/<body>/{centerline,coordinates}
@@ -15,10 +15,10 @@ Several files: one JSON line each.
 --compare-final A.h5 B.h5 compares the final states of two dynamic runs of one scene (e.g. an
 uninterrupted run and a restarted one): the last frame's nodal coordinates of every body and the
 last row of every /series/rigid_* and of /series/kinetic_energy (velocity level), and prints
-{"time": [tA, tB], "max_abs": ..., "max_rel": ..., "rel2": ..., "kinetic_rel": ...}: max_rel =
+{"a": A, "b": B, "time": [tA, tB], "max_abs": ..., "max_rel": ..., "rel2": ..., "kinetic_rel": ...}: max_rel =
 max_abs / (the largest |value| of A's state: coordinates and rigid coordinates), rel2 = |A - B| / |A|
 in the 2-norm (the norm of Strand's Newton test), kinetic_rel the relative difference of the kinetic
-energies.
+energies. More pairs: one line each.
 
 Exit status: 0 all checks passed, 1 some check failed, 2 a file cannot be opened.
 Uses the Debian python3-h5py, hence /usr/bin/python3 (not a pyenv python3 without h5py).
@@ -314,12 +314,12 @@ def compare_final(a, b):
     try:
         fa, fb = h5py.File(a, "r"), h5py.File(b, "r")
     except OSError as e:
-        print(json.dumps({"ok": False, "errors": ["cannot open: %s" % e]}))
+        print(json.dumps({"a": a, "b": b, "ok": False, "errors": ["cannot open: %s" % e]}))
         return 2
     with fa, fb:
         ta, tfa, xa, ka = final_state(fa)
         tb, tfb, xb, kb = final_state(fb)
-    out = {"time": [ta, tb], "frame_time": [tfa, tfb], "size": int(xa.size)}
+    out = {"a": a, "b": b, "time": [ta, tb], "frame_time": [tfa, tfb], "size": int(xa.size)}
     if xa.shape != xb.shape or xa.size == 0:
         out.update(ok=False, errors=["states of sizes %d and %d" % (xa.size, xb.size)])
         print(json.dumps(out))
@@ -336,8 +336,8 @@ def compare_final(a, b):
 def main(argv):
     args = [a for a in argv[1:] if not a.startswith("--")]
     flags = {a for a in argv[1:] if a.startswith("--")}
-    if flags == {"--compare-final"} and len(args) == 2:
-        return compare_final(*args)
+    if flags == {"--compare-final"} and args and len(args) % 2 == 0:
+        return max(compare_final(a, b) for a, b in zip(args[::2], args[1::2]))
     if not args or flags - {"--pvpython"}:
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
         return 2
