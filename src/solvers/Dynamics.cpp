@@ -443,6 +443,11 @@ PetscErrorCode Dynamics::energies(Vec X, Vec V, DynamicsStep* s) {
 PetscErrorCode Dynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
+  // After a failed step, TSSolve monitors the last accepted state once more under its step number
+  // (PETSc 3.18 src/ts/interface/ts.c): not a new step, so no second row of it.
+  TSConvergedReason reason;
+  PetscCall(TSGetConvergedReason(ts, &reason));
+  if (reason < 0 && step == self->_last.step && step > 0) PetscFunctionReturn(0);
   if (self->_firstOrder) {  // X is the state (u, v)
     Vec U, V;
     PetscCall(self->_space->view(X, &U, &V));

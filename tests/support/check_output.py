@@ -256,6 +256,10 @@ def check_file(h5, path, summary, errors):
     summary["series"] = series
     if len(set(series.values())) > 1:  # every series gets one value per step
         errors.append("/series: datasets of different lengths %s" % sorted(set(series.values())))
+    if "time" in h5.get("series", {}):  # one row per step: the times increase
+        times = [float(v) for v in h5["series"]["time"][:]]
+        if any(not b > a for a, b in zip(times, times[1:])):
+            errors.append("/series/time: not increasing (a step written twice?)")
 
     # modes
     if "modes" in h5:
