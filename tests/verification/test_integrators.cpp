@@ -17,6 +17,8 @@
 //     explanation at 1.05 of it. ABM4 (PECE) amplifies undamped modes by 1 + 0.16 (h omega)^6 per
 //     step (AdamsBashforthMoulton.hpp): undamped it stops with that explanation; with the damping
 //     (real eigenvalues, stable for h |lambda| <= 1.28) the same model runs.
+//  4. BDF3-5 on the soft pendulum of 1: BDF3 at rate 3, BDF4 and BDF5 at the rate 2 of TSBDF's
+//     backward-Euler start, each more accurate than BDF2 at every step.
 #include <gtest/gtest.h>
 
 #include <cmath>
