@@ -29,6 +29,7 @@
 
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/Schemes.hpp"
+#include "support/Elliptic.hpp"
 #include "support/Scenes.hpp"
 
 using namespace strand;
@@ -38,17 +39,6 @@ namespace {
 
 constexpr double kG = 9.81, kL = 1.2, kM = 2.0, kJ = 0.05, kSpin = 3.0;
 constexpr int kSubsteps = 64;  // reference RK4 substeps per step of the run
-
-// Complete elliptic integral of the first kind, K(k) = pi / (2 AGM(1, sqrt(1 - k^2))).
-double ellipticK(double k) {
-  double a = 1.0, b = std::sqrt(1.0 - k * k);
-  for (int i = 0; i < 30; ++i) {
-    const double an = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    a = an;
-  }
-  return M_PI / (2.0 * a);
-}
 
 // theta(t) of theta'' = -(g/l) cos(theta), theta(0) = theta'(0) = 0, by RK4 with n steps to tEnd;
 // theta[i] at t = i tEnd / n.

@@ -25,6 +25,7 @@
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/Schemes.hpp"
 #include "support/ExactMotionChecks.hpp"
+#include "support/Elliptic.hpp"
 #include "support/Scenes.hpp"
 
 using namespace strand;
@@ -42,17 +43,6 @@ model::DynamicsDesc scheme(model::Integrator integrator, double rhoInf, double d
   d.dt = dt;
   d.tEnd = tEnd;
   return d;
-}
-
-// Complete elliptic integral of the first kind, K(k) = pi / (2 AGM(1, sqrt(1 - k^2))).
-double ellipticK(double k) {
-  double a = 1.0, b = std::sqrt(1.0 - k * k);
-  for (int i = 0; i < 30; ++i) {
-    const double an = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    a = an;
-  }
-  return M_PI / (2.0 * a);
 }
 
 struct ChainRun {
