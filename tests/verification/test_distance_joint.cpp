@@ -29,7 +29,7 @@
 
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/Schemes.hpp"
-#include "support/Elliptic.hpp"
+#include "support/ExactPendulum.hpp"
 #include "support/Scenes.hpp"
 
 using namespace strand;
@@ -46,14 +46,8 @@ std::vector<double> referenceSwing(double tEnd, int n) {
   const double c = kG / kL, h = tEnd / n;
   std::vector<double> theta{0.0};
   double th = 0.0, w = 0.0;
-  auto acc = [&](double p) { return -c * std::cos(p); };
   for (int i = 0; i < n; ++i) {
-    const double k1p = w, k1w = acc(th);
-    const double k2p = w + 0.5 * h * k1w, k2w = acc(th + 0.5 * h * k1p);
-    const double k3p = w + 0.5 * h * k2w, k3w = acc(th + 0.5 * h * k2p);
-    const double k4p = w + h * k3w, k4w = acc(th + h * k3p);
-    th += h / 6.0 * (k1p + 2 * k2p + 2 * k3p + k4p);
-    w += h / 6.0 * (k1w + 2 * k2w + 2 * k3w + k4w);
+    pendulumRk4Step(c, h, th, w);
     theta.push_back(th);
   }
   return theta;

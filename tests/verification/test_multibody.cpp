@@ -25,7 +25,7 @@
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/Schemes.hpp"
 #include "support/ExactMotionChecks.hpp"
-#include "support/Elliptic.hpp"
+#include "support/ExactPendulum.hpp"
 #include "support/Scenes.hpp"
 
 using namespace strand;
@@ -106,15 +106,7 @@ double referenceAngle(double t, double phi0 = 0.0) {
   const int n = static_cast<int>(std::ceil(t * 2e5));
   const double h = t / n;
   double phi = phi0, w = 0.0;
-  auto acc = [&](double p) { return -c * std::cos(p); };
-  for (int i = 0; i < n; ++i) {
-    const double k1p = w, k1w = acc(phi);
-    const double k2p = w + 0.5 * h * k1w, k2w = acc(phi + 0.5 * h * k1p);
-    const double k3p = w + 0.5 * h * k2w, k3w = acc(phi + 0.5 * h * k2p);
-    const double k4p = w + h * k3w, k4w = acc(phi + h * k3p);
-    phi += h / 6.0 * (k1p + 2 * k2p + 2 * k3p + k4p);
-    w += h / 6.0 * (k1w + 2 * k2w + 2 * k3w + k4w);
-  }
+  for (int i = 0; i < n; ++i) pendulumRk4Step(c, h, phi, w);
   return phi;
 }
 
@@ -232,19 +224,13 @@ PendulumIntegrals pendulumIntegrals(double tEnd) {
   auto bdf1 = [](double phi) { return 1.0 + (1.0 + 4.0 * P::kv) * std::sin(phi) * std::sin(phi); };
   PendulumIntegrals out;
   double phi = 0.0, w = 0.0, diss = 0.0, b1 = 0.0;
-  auto acc = [](double p) { return -P::w2 * std::cos(p); };
   for (int i = 0; i < n; ++i) {
     if (i % 50 == 0) {
       out.sin2.push_back(std::sin(phi) * std::sin(phi));
       out.dissipation.push_back(diss);
     }
     const double f0 = qMq(phi, w), g0 = bdf1(phi);
-    const double k1p = w, k1w = acc(phi);
-    const double k2p = w + 0.5 * h * k1w, k2w = acc(phi + 0.5 * h * k1p);
-    const double k3p = w + 0.5 * h * k2w, k3w = acc(phi + 0.5 * h * k2p);
-    const double k4p = w + h * k3w, k4w = acc(phi + h * k3p);
-    phi += h / 6.0 * (k1p + 2 * k2p + 2 * k3p + k4p);
-    w += h / 6.0 * (k1w + 2 * k2w + 2 * k3w + k4w);
+    pendulumRk4Step(P::w2, h, phi, w);
     diss += 0.5 * h * (f0 + qMq(phi, w));  // trapezoidal, error O(1e-11) relative
     b1 += 0.5 * h * (g0 + bdf1(phi));
   }
