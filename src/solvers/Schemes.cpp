@@ -1,6 +1,8 @@
 #include "strand/solvers/Schemes.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace strand::solvers {
 
@@ -51,13 +53,19 @@ PetscErrorCode configureTimeStepping(TS ts, const model::DynamicsDesc& desc) {
   PetscFunctionReturn(0);
 }
 
+GrowthBand bdfGrowthBand(int order) {
+  static const GrowthBand kBand[] = {{0.0, 1.9359, 0.046}, {0.0, 4.7137, 0.19}, {0.7110, 9.3914, 0.38}};
+  return kBand[std::min(std::max(order, 3), 5) - 3];
+}
+
 std::string stabilityNote(const model::DynamicsDesc& desc) {
   if (desc.integrator != model::Integrator::Bdf || desc.bdfOrder < 3) return {};
-  // band of h omega on the imaginary axis where the largest root exceeds 1, and that root's maximum
-  static const char* const kBand[] = {"0 < h omega < 1.94 (up to 4.6 % per step)", "0 < h omega < 4.71 (up to 19 %)",
-                                      "0.71 < h omega < 9.39 (up to 38 %)"};
-  return "BDF" + std::to_string(desc.bdfOrder) + " is not A-stable: an undamped mode with " +
-         kBand[std::min(desc.bdfOrder, 5) - 3] + " grows; use BDF2 or generalized-alpha. ";
+  const GrowthBand b = bdfGrowthBand(desc.bdfOrder);
+  char band[96];
+  std::snprintf(band, sizeof band, "%.2g < h omega < %.3g (up to %.2g %%%s)", b.lower, b.upper, 100.0 * b.growth,
+                desc.bdfOrder == 3 ? " per step" : "");
+  return "BDF" + std::to_string(desc.bdfOrder) + " is not A-stable: an undamped mode with " + band +
+         " grows; use BDF2 or generalized-alpha. ";
 }
 
 }  // namespace strand::solvers

@@ -21,6 +21,7 @@
 #include <string>
 
 #include "strand/solvers/Dynamics.hpp"
+#include "strand/solvers/Schemes.hpp"
 #include "support/Pendulum.hpp"
 
 using namespace strand;
@@ -34,9 +35,6 @@ bool runs(const model::SceneDescription& sc, model::DynamicsDesc d) {
 }
 
 }  // namespace
-
-// Upper edge of the band of h omega on the imaginary axis where BDF3, 4, 5 amplify (see the top).
-double bdfBandEdge(int order) { return order == 3 ? 1.9359 : order == 4 ? 4.7137 : 9.3914; }
 
 int main(int argc, char** argv) {
   PetscCall(SlepcInitialize(&argc, &argv, nullptr, nullptr));
@@ -73,8 +71,8 @@ int main(int argc, char** argv) {
       PetscCall(PetscPrintf(PETSC_COMM_WORLD,
                             "{\"study\": \"stability_band\", \"scheme\": \"bdf%d\", \"elements\": %d, \"omega_max\": %.6e, "
                             "\"t_end\": %.3e, \"h_omega\": [%s], \"runs\": [%s], \"theory_band\": [%.4f, %.4f]}\n",
-                            order, elements, omega, tEndBdf, hw.c_str(), ok.c_str(), order == 5 ? 0.7110 : 0.0,
-                            bdfBandEdge(order)));
+                            order, elements, omega, tEndBdf, hw.c_str(), ok.c_str(), solvers::bdfGrowthBand(order).lower,
+                            solvers::bdfGrowthBand(order).upper));
     }
     for (const char* name : {"generalized_alpha", "newmark", "hht", "bdf1", "bdf2"}) {
       const std::string n = name;

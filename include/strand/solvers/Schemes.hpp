@@ -21,9 +21,15 @@ constexpr double kMinStepFraction = 1e-10;
 // Step, final time, step count (landing on t_end), a fixed step's first Newton failure ending the
 // run (adaptive BDF: a rejected step), and the adaptor (BDF adaptive: TSADAPTBASIC with rtol/atol).
 PetscErrorCode configureTimeStepping(TS ts, const model::DynamicsDesc& desc);
-// For a failure message: why the scheme itself can fail on an undamped model, or empty. BDF 3-5 are
-// not A-stable: an undamped mode grows where h omega lies in the band below (roots of the BDF
-// polynomial for lambda = i omega, computed; Hairer & Wanner, Solving ODEs II, V.2).
+// BDF 3-5 are not A-stable: an undamped mode grows while h omega lies in lower < h omega < upper on
+// the imaginary axis, by up to `growth` per step there (largest root of rho(zeta) - i h omega
+// sigma(zeta), computed; Hairer & Wanner, Solving ODEs II, V.2). Orders 3, 4, 5 (above 5: 5's).
+struct GrowthBand {
+  double lower, upper, growth;
+};
+GrowthBand bdfGrowthBand(int order);
+// For a failure message: why the scheme itself can fail on an undamped model (BDF 3-5: the band
+// above), or empty.
 std::string stabilityNote(const model::DynamicsDesc& desc);
 
 }  // namespace strand::solvers
