@@ -447,7 +447,7 @@ PetscErrorCode Dynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X, void*
   // (PETSc 3.18 src/ts/interface/ts.c): not a new step, so no second row of it.
   TSConvergedReason reason;
   PetscCall(TSGetConvergedReason(ts, &reason));
-  if (reason < 0 && step == self->_last.step && step > 0) PetscFunctionReturn(0);
+  if (reason < 0 && step == self->_last.step) PetscFunctionReturn(0);
   if (self->_firstOrder) {  // X is the state (u, v)
     Vec U, V;
     PetscCall(self->_space->view(X, &U, &V));

@@ -168,6 +168,24 @@ TEST(Cli, DivergedSolveExitsWithCode3AndKeepsReadableOutput) {
   fs::remove_all(dir);
 }
 
+// A dynamic run whose first step fails (Newton limited to one iteration): exit 3, and the file
+// holds the initial state once. TSSolve monitors the last accepted state again after a failed step;
+// Dynamics::monitor must not write it twice, step 0 included (check_output.py: increasing times).
+TEST(Cli, FirstStepFailureKeepsOneRowOfTheInitialState) {
+  const fs::path dir = scratchDir("first-step");
+  const fs::path out = dir / "pendulum.h5";
+  auto r = runCommand(strandBinary() + " run " + sourceDir() + "/meshes/flexible-pendulum.yaml -o " + out.string() +
+                      " -dyn_snes_max_it 1");
+  EXPECT_EQ(r.exitCode, 3) << r.output;
+  ASSERT_TRUE(fs::exists(out));
+  if (haveH5py()) {
+    auto c = runCommand("/usr/bin/python3 " + sourceDir() + "/tests/support/check_output.py " + out.string());
+    EXPECT_EQ(c.exitCode, 0) << c.output;
+    EXPECT_NE(c.output.find("\"time\": 1,"), std::string::npos) << c.output;  // one row in /series
+  }
+  fs::remove_all(dir);
+}
+
 // Regression (gold values from a run of this code, commit "strand run/modes driver"): the default
 // scene meshes/hanging-cable.yaml. The verification of the same physics is in docs/validation.md.
 TEST(Cli, DefaultSceneRegression) {

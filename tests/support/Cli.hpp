@@ -25,12 +25,7 @@ inline std::string sourceDir() {
 }
 
 // Runs `command` through the shell with PETSc options that keep error output short.
-// A `strand` started directly (not by mpiexec) is an Open MPI singleton, which by default forks a
-// support daemon (orted) at MPI_Init: 0.15-0.2 s of each of the many short runs of these tests.
-// Strand never spawns processes, so the children run as isolated singletons (no daemon; the same
-// computation). Set OMPI_MCA_ess_singleton_isolated=0 in the environment to test with the daemon.
 inline CliResult runCommand(const std::string& command) {
-  setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);  // 0: an existing value wins
   CliResult r;
   FILE* p = popen((command + " 2>&1").c_str(), "r");
   if (!p) return r;

@@ -304,7 +304,7 @@ def check_file(h5, path, summary, errors):
 
 
 def final_state(h5):
-    """(time, state vector, kinetic energy) at the end of a dynamic run's output."""
+    """(series time, last frame's time, state vector, kinetic energy) at the end of a dynamic run's output."""
     frames = h5["frames"]
     last = frames[sorted(frames.keys())[-1]]
     parts = [last[b]["coordinates"][()].ravel() for b in sorted(last.keys())]

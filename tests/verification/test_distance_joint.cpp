@@ -139,8 +139,9 @@ SwingRun swing(const model::DynamicsDesc& d, int N) {
     PetscFunctionReturn(0);
   };
   PetscCallAbort(comm, dyn.run(X, V, cb, &out.failure));
-  double e[8] = {out.length, out.spin, out.spinRate, out.path, out.tension, out.bottom, out.turn, out.monitorG};
-  MPI_Bcast(e, 8, MPI_DOUBLE, 0, comm);
+  // from rank 0's gathered coordinates (monitorG is the monitor's global value on every rank)
+  double e[7] = {out.length, out.spin, out.spinRate, out.path, out.tension, out.bottom, out.turn};
+  MPI_Bcast(e, 7, MPI_DOUBLE, 0, comm);
   out.length = e[0];
   out.spin = e[1];
   out.spinRate = e[2];

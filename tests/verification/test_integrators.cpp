@@ -23,6 +23,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <string>
 
 #include "support/Pendulum.hpp"
 
@@ -66,6 +68,14 @@ const Study& rk4Reference() {
   return s;
 }
 
+// halvings(), run once per name for all the tests of this file (BDF2's serve two of them).
+const Study& study(const model::DynamicsDesc& d, double h0, const std::string& name) {
+  static std::map<std::string, Study> done;
+  auto it = done.find(name);
+  if (it == done.end()) it = done.emplace(name, halvings(d, h0, name.c_str())).first;
+  return it->second;
+}
+
 }  // namespace
 
 TEST(Integrators, EveryFirstOrderSchemeConvergesAtItsOrderToTheSameTip) {
@@ -86,7 +96,7 @@ TEST(Integrators, EveryFirstOrderSchemeConvergesAtItsOrderToTheSameTip) {
   // rate windows: +-0.1 at orders 1 and 2 (as test_dynamics), +-0.25 at order 4
   for (int k = 0; k < 2; ++k) EXPECT_NEAR(std::log2(ref.change[k] / ref.change[k + 1]), 4.0, 0.25) << "rk4";
   for (const Case& c : cases) {
-    const Study s = halvings(c.d, c.h0, c.name);
+    const Study& s = study(c.d, c.h0, c.name);
     for (int k = 0; k < 2; ++k)
       EXPECT_NEAR(std::log2(s.change[k] / s.change[k + 1]), c.order, c.order == 4 ? 0.25 : 0.1) << c.name;
     // Richardson estimates of the error of the finest runs (this scheme's and the reference's)
@@ -197,7 +207,7 @@ TEST(Integrators, HigherBdfOrdersConvergeAtTheRateTheirStartAllows) {
   const Study& ref = rk4Reference();
   model::DynamicsDesc d = scheme(model::Integrator::Bdf, 1.0, 0, 0);
   d.bdfOrder = 2;
-  const Study bdf2 = halvings(d, H_BDF2, "bdf2");
+  const Study& bdf2 = study(d, H_BDF2, "bdf2");
   auto tipError = [&](const Study& s, int k) {
     return std::hypot(s.tip[k][0] - ref.tip[3][0], s.tip[k][1] - ref.tip[3][1]);
   };
