@@ -98,6 +98,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   // formJacobian decides at every iterate); -dyn_newton_matrix_contraction 0 gives full Newton.
   // as in statics: the residual has a round-off floor (NewtonConvergence.cpp)
   _floor.coordinateNorm = assembler.coordinateNorm();
+  _floor.keptTolerance = 1e-3;  // a kept matrix leaves at most 1e-3 of the first correction (NewtonConvergence.cpp)
   PetscCallAbort(comm, SNESSetConvergenceTest(snes, roundoffFloorConvergence, &_floor, nullptr));
   PetscCallAbort(comm, useFullNewtonStep(snes, &_floor));  // no residual the step test discards
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
@@ -144,6 +145,7 @@ PetscErrorCode Dynamics::setFromOptions() {
   PetscReal c = _reuse.contraction();
   PetscCall(PetscOptionsGetReal(nullptr, "dyn_", "-newton_matrix_contraction", &c, nullptr));
   _reuse.setContraction(c);
+  PetscCall(PetscOptionsGetReal(nullptr, "dyn_", "-newton_kept_tolerance", &_floor.keptTolerance, nullptr));
   PetscBool ours, alpha2;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2));
@@ -397,6 +399,7 @@ PetscErrorCode Dynamics::formJacobian(TS ts, PetscReal t, Vec U, Vec V, Vec, Pet
   bool rebuild;
   PetscCall(TSGetSNES(ts, &snes));
   PetscCall(self->_reuse.decide(snes, self->_floor, shiftA, shiftV, &rebuild));
+  self->_floor.keptMatrix = !rebuild;
   if (rebuild) PetscCall(self->_asm.dynamicJacobian(U, self->_damped ? V : nullptr, t, shiftV, shiftA, J));
   PetscFunctionReturn(0);
 }

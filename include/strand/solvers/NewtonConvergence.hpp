@@ -12,6 +12,12 @@ struct NewtonFloor {
   PetscInt iteration = -1;                        // of the last test
   PetscReal step = 0.0, previousStep = 0.0;       // |du| of the last two Newton corrections
   PetscReal fnorm = 0.0;                          // |R| after the last one
+  PetscReal firstStep = 0.0;                      // |du_1|, the first correction of this solve
+  // Set by NewtonMatrixReuse at every iterate: the next correction comes from a kept matrix. Such a
+  // correction is accepted only if the error left is also below keptTolerance |du_1| (the .cpp says
+  // why); 0 switches that off.
+  bool keptMatrix = false;
+  PetscReal keptTolerance = 0.0;
   // The contraction of the last two corrections, theta = |du_k| / |du_{k-1}| (0 before two are known).
   PetscReal contraction() const { return iteration >= 2 && previousStep > 0.0 ? step / previousStep : 0.0; }
 };
