@@ -41,7 +41,7 @@ namespace {
 // |du_1|? (Its own size, not theta/(1 - theta) of it: theta is not trustworthy here.)
 bool keptMatrixConverged(const NewtonFloor& floor, PetscInt it, PetscReal snorm) {
   const PetscReal firstStep = it == 1 ? snorm : floor.firstStep;
-  return !floor.keptMatrix || floor.keptTolerance <= 0.0 || snorm < floor.keptTolerance * firstStep;
+  return !floor.keptMatrix || floor.keptTolerance <= 0.0 || snorm <= floor.keptTolerance * firstStep;  // (<=: a zero correction)
 }
 
 // The step test: after the correction du_it (|du_it| = snorm, the one before: previousStep), is the
