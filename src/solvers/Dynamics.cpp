@@ -46,6 +46,12 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, VecAXPY(_notMultiplier, -1.0, _multipliers));
   PetscCallAbort(comm, assembler.externalForce(_fext));
   PetscCallAbort(comm, assembler.supportMask(_supported));
+  {  // and 1e-12 |f| |q0|: the potential -f.u of the constant loads has the round-off eps |f| |q0|
+     // (a rigid pendulum hanging at rest: 6e-27 J "created", with no cable in the floor above)
+    PetscReal fnorm;
+    PetscCallAbort(comm, VecNorm(_fext, NORM_2, &fnorm));
+    _energyFloor += 1e-12 * fnorm * assembler.coordinateNorm();
+  }
 
   _firstOrder = model::isFirstOrder(desc.integrator);
   _explicit = model::isExplicit(desc.integrator);
@@ -98,7 +104,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   // formJacobian decides at every iterate); -dyn_newton_matrix_contraction 0 gives full Newton.
   // as in statics: the residual has a round-off floor (NewtonConvergence.cpp)
   _floor.coordinateNorm = assembler.coordinateNorm();
-  _floor.keptTolerance = 1e-3;  // a kept matrix leaves at most 1e-3 of the first correction (NewtonConvergence.cpp)
+  _floor.keptTolerance = 1e-3;  // a kept matrix's correction: at most 1e-3 of the first (NewtonConvergence.cpp)
   PetscCallAbort(comm, SNESSetConvergenceTest(snes, roundoffFloorConvergence, &_floor, nullptr));
   PetscCallAbort(comm, useFullNewtonStep(snes, &_floor));  // no residual the step test discards
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));

@@ -23,8 +23,8 @@ namespace strand::solvers {
 //    (NewtonMatrixReuse) theta is its linear rate;
 //  - with a singular tangent the iterates run away, |u| grows and |du|/|u| shrinks while |R| is
 //    1e28 (seen with an unsupported cable): the residual test rejects that;
-//  - a correction from a kept Newton matrix (NewtonMatrixReuse) must also leave an error below
-//    keptTolerance |du_1|, a fraction of the step's first correction, i.e. of the predictor's error,
+//  - a correction from a kept Newton matrix (NewtonMatrixReuse) must itself be at most
+//    keptTolerance |du_1| (or at round-off), a fraction of the step's first correction, i.e. of the predictor's error,
 //    which is of the order of the scheme's local error. Full Newton stops far below stol |q|
 //    (its error is quadratic), a kept matrix just below it, and in the same direction at every
 //    step: the error then adds up over the T/h steps (spin-up at h = 62.5 us: 7.3e-7 m against
@@ -37,11 +37,14 @@ namespace strand::solvers {
 //    so theta = |du_2|/|du_1| was 0.003 while the slowest component contracted at 0.28.
 namespace {
 
-// For a correction du_it (|du_it| = snorm) from a kept matrix: has it shrunk below keptTolerance
-// |du_1|? (Its own size, not theta/(1 - theta) of it: theta is not trustworthy here.)
-bool keptMatrixConverged(const NewtonFloor& floor, PetscInt it, PetscReal snorm) {
+// For a correction du_it (|du_it| = snorm) from a kept matrix: is it at most keptTolerance |du_1|?
+// (Its own size, not theta/(1 - theta) of it: theta is not trustworthy here.) A correction at the
+// round-off of the coordinates, 10 eps max(|u|, |q0|), is accepted too: a step at rest has a first
+// correction of that size, which a kept matrix cannot reduce 1000x (it would be rebuilt instead).
+bool keptMatrixConverged(const NewtonFloor& floor, PetscInt it, PetscReal snorm, PetscReal xnorm) {
   const PetscReal firstStep = it == 1 ? snorm : floor.firstStep;
-  return !floor.keptMatrix || floor.keptTolerance <= 0.0 || snorm <= floor.keptTolerance * firstStep;  // (<=: a zero correction)
+  const PetscReal roundoff = 10.0 * PETSC_MACHINE_EPSILON * std::max(xnorm, floor.coordinateNorm);
+  return !floor.keptMatrix || floor.keptTolerance <= 0.0 || snorm <= std::max(floor.keptTolerance * firstStep, roundoff);
 }
 
 // The step test: after the correction du_it (|du_it| = snorm, the one before: previousStep), is the
@@ -50,7 +53,7 @@ bool stepConverged(const NewtonFloor& floor, PetscInt it, PetscReal previousStep
                    PetscReal stol) {
   const PetscReal theta = it >= 2 && previousStep > 0.0 ? snorm / previousStep : 0.0;
   const PetscReal error = theta > 0.0 && theta < 0.5 ? theta / (1.0 - theta) * snorm : snorm;
-  return it > 0 && keptMatrixConverged(floor, it, snorm) && error < stol * std::max(xnorm, floor.coordinateNorm);
+  return it > 0 && keptMatrixConverged(floor, it, snorm, xnorm) && error < stol * std::max(xnorm, floor.coordinateNorm);
 }
 
 // u -= lambda du and the sums of squares of both; restrict (distinct vectors) lets the compiler
@@ -154,8 +157,10 @@ PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm,
   PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
   if (*reason == SNES_CONVERGED_ITERATING && stepConverged(*floor, it, floor->previousStep, snorm, xnorm, stol))
     *reason = SNES_CONVERGED_SNORM_RELATIVE;
-  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && (fnorm > floor->fnorm0 || !keptMatrixConverged(*floor, it, snorm)))
-    *reason = SNES_CONVERGED_ITERATING;  // (SNESConvergedDefault's own |du| < stol |u| included)
+  // (SNESConvergedDefault's own |du| < stol |u| included; its residual test, |R| <= rtol |R0|,
+  // stays: a residual reduced 1e10 times is converged with any matrix)
+  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && (fnorm > floor->fnorm0 || !keptMatrixConverged(*floor, it, snorm, xnorm)))
+    *reason = SNES_CONVERGED_ITERATING;
   if (!std::isfinite(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;
   PetscFunctionReturn(0);
 }

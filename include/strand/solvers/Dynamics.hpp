@@ -184,7 +184,7 @@ private:
   double _e0 = 0.0, _energyScale = 0.0, _blowUp = 0.0;  // blow-up guard (monitor, postStep)
   DynamicsStep _blowUpAt;  // first step of the streak
   int _overSteps = 0;      // consecutive steps with energy created beyond the guard's bound
-  double _energyFloor = 0.0;  // below it, created energy is noise: 1e-12 sum over cables of EA L
+  double _energyFloor = 0.0;  // below it, created energy is noise: 1e-12 (sum over cables of EA L + |f_ext| |q0|)
   static constexpr int kBlowUpSteps = 5;
 };
 

@@ -13,17 +13,18 @@ struct NewtonFloor {
   PetscReal step = 0.0, previousStep = 0.0;       // |du| of the last two Newton corrections
   PetscReal fnorm = 0.0;                          // |R| after the last one
   PetscReal firstStep = 0.0;                      // |du_1|, the first correction of this solve
-  // Set by NewtonMatrixReuse at every iterate: the next correction comes from a kept matrix. Such a
-  // correction is accepted only if the error left is also below keptTolerance |du_1| (the .cpp says
-  // why); 0 switches that off.
+  // Set by the dynamic Jacobian callback at every iterate (NewtonMatrixReuse's decision): the next
+  // correction comes from a kept matrix. Such a correction is accepted only if it is itself at most
+  // keptTolerance |du_1| or at round-off (the .cpp says why).
   bool keptMatrix = false;
-  PetscReal keptTolerance = 0.0;
+  PetscReal keptTolerance = 0.0;  // 0 switches that rule off (statics)
   // The contraction of the last two corrections, theta = |du_k| / |du_{k-1}| (0 before two are known).
   PetscReal contraction() const { return iteration >= 2 && previousStep > 0.0 ? step / previousStep : 0.0; }
 };
 
 // SNES convergence test (ctx: a NewtonFloor): SNESConvergedDefault, plus a test on the Newton
-// correction against the coordinates that stops at the residual's round-off floor (the .cpp says why).
+// correction against the coordinates that stops at the residual's round-off floor, and for a
+// correction from a kept matrix the test against the first correction (the .cpp says why).
 PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm, PetscReal snorm, PetscReal fnorm,
                                         SNESConvergedReason* reason, void* ctx);
 
