@@ -253,6 +253,12 @@ private:
       PetscFunctionReturn(0);
     };
     PetscCallAbort(_comm, dyn.run(X, V, onStep, failure));
+    const std::string newtonStart = dyn.newtonStart();  // the first step's check or a Newton failure may change it
+    if (!newtonStart.empty()) {
+      _writer->setAttribute("newton_start", newtonStart);
+      if (newtonStart != "acceleration")
+        say("Newton started from the " + newtonStart + " predictor (docs/user-guide.md, \"Newton start\")");
+    }
     int code = failure->empty() ? kExitSuccess : kExitDiverged;
     if (code == kExitSuccess && dyn.stoppedByRequest()) {
       writeDynamicsCheckpoint(_comm, _scene, _problem, dyn, X, V, _checkpoint.path);

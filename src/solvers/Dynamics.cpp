@@ -397,6 +397,14 @@ PetscErrorCode Dynamics::retryNewton(void* ctx, PetscBool* again) {
   PetscFunctionReturn(0);
 }
 
+std::string Dynamics::newtonStart() const {
+  PetscBool ours;
+  const char* name = "";
+  PetscCallAbort(PETSC_COMM_SELF, PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
+  if (ours) PetscCallAbort(PETSC_COMM_SELF, GeneralizedAlphaGetPredictor(_ts, &name));
+  return name;
+}
+
 PetscErrorCode Dynamics::formJacobian(TS ts, PetscReal t, Vec U, Vec V, Vec, PetscReal shiftV, PetscReal shiftA, Mat J, Mat,
                                       void* ctx) {
   PetscFunctionBeginUser;
@@ -406,6 +414,10 @@ PetscErrorCode Dynamics::formJacobian(TS ts, PetscReal t, Vec U, Vec V, Vec, Pet
   PetscCall(TSGetSNES(ts, &snes));
   PetscCall(self->_reuse.decide(snes, self->_floor, shiftA, shiftV, &rebuild));
   self->_floor.keptMatrix = !rebuild;
+  // where Newton started away from the constant-acceleration predictor (NewtonFloor::offset)
+  PetscBool ours;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ts), kTsGeneralizedAlpha, &ours));
+  if (ours) PetscCall(GeneralizedAlphaGetPredictorOffset(ts, &self->_floor.offset));
   if (rebuild) PetscCall(self->_asm.dynamicJacobian(U, self->_damped ? V : nullptr, t, shiftV, shiftA, J));
   PetscFunctionReturn(0);
 }
@@ -639,6 +651,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
         PetscCall(GeneralizedAlphaSetState(_ts, _a0, a));
         PetscCall(VecDestroy(&a));
       }
+      PetscCall(GeneralizedAlphaSetCoordinateNorm(_ts, _floor.coordinateNorm));
       if (_moving) PetscCall(GeneralizedAlphaSetPrescribedMotion(_ts, prescribe, this));
       if (_constrained) PetscCall(GeneralizedAlphaSetAlgebraic(_ts, _multipliers));
     }

@@ -41,8 +41,14 @@ namespace {
 // (Its own size, not theta/(1 - theta) of it: theta is not trustworthy here.) A correction at the
 // round-off of the coordinates, 10 eps max(|u|, |q0|), is accepted too: a step at rest has a first
 // correction of that size, which a kept matrix cannot reduce 1000x (it would be rebuilt instead).
+// The reference of a solve whose first correction is du_1 (|du_1| = snorm): |du_1|, or the
+// local-error estimate |X_1 - X_a| when smaller (NewtonFloor::offset).
+PetscReal firstStepReference(const NewtonFloor& floor, PetscReal firstStep) {
+  return floor.offsetStep >= 0.0 ? std::min(firstStep, floor.offsetStep) : firstStep;
+}
+
 bool keptMatrixConverged(const NewtonFloor& floor, PetscInt it, PetscReal snorm, PetscReal xnorm) {
-  const PetscReal firstStep = it == 1 ? snorm : floor.firstStep;
+  const PetscReal firstStep = firstStepReference(floor, it == 1 ? snorm : floor.firstStep);
   const PetscReal roundoff = 10.0 * PETSC_MACHINE_EPSILON * std::max(xnorm, floor.coordinateNorm);
   return !floor.keptMatrix || floor.keptTolerance <= 0.0 || snorm <= std::max(floor.keptTolerance * firstStep, roundoff);
 }
@@ -91,11 +97,34 @@ PetscErrorCode updateInPlace(Vec X, Vec Y, PetscReal lambda, PetscReal* xnorm, P
   PetscFunctionReturn(0);
 }
 
+// offset = X_a - X for the iterate X before the correction du: after it, X - du, so offset += du;
+// *distance = |offset|, |X_a - X| of the new iterate (NewtonFloor::offset).
+PetscErrorCode advanceOffset(Vec du, PetscReal lambda, Vec offset, PetscReal* distance) {
+  PetscInt n;
+  const PetscScalar* y;
+  PetscScalar* p;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(du, &n));
+  PetscCall(VecGetArrayRead(du, &y));
+  PetscCall(VecGetArray(offset, &p));
+  PetscReal sum = 0.0, global;
+  for (PetscInt i = 0; i < n; ++i) {
+    p[i] += lambda * y[i];
+    sum += PetscRealPart(p[i] * PetscConj(p[i]));
+  }
+  PetscCall(PetscLogFlops(3.0 * n));
+  PetscCall(VecRestoreArray(offset, &p));
+  PetscCall(VecRestoreArrayRead(du, &y));
+  PetscCallMPI(MPI_Allreduce(&sum, &global, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(du))));
+  *distance = std::sqrt(global);
+  PetscFunctionReturn(0);
+}
+
 // SNESLINESEARCHBASIC (the full step X - lambda Y, here in place) without the residual at the new
 // iterate when the test below will accept it on its step alone: the residual would only be
 // discarded.
 PetscErrorCode fullStep(SNESLineSearch ls, void* ctx) {
-  const auto* floor = static_cast<const NewtonFloor*>(ctx);
+  auto* floor = static_cast<NewtonFloor*>(ctx);
   SNES snes;
   Vec X, F, Y;
   PetscReal xnorm, fnorm, ynorm, lambda, stol;
@@ -108,6 +137,7 @@ PetscErrorCode fullStep(SNESLineSearch ls, void* ctx) {
   PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_SUCCEEDED));
   PetscCall(updateInPlace(X, Y, lambda, &xnorm, &ynorm));
   PetscCall(SNESGetIterationNumber(snes, &it));
+  if (floor->offset) PetscCall(advanceOffset(Y, lambda, floor->offset, &floor->offsetStep));
   PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
   // the test of iteration it + 1 sees |R| of this iterate (fnorm <= fnorm0 lets it accept)
   const bool accepted = floor->iteration == it && floor->fnorm <= floor->fnorm0 &&
@@ -145,6 +175,7 @@ PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm,
   if (it == 0) {
     floor->fnorm0 = fnorm;
     floor->step = floor->previousStep = floor->firstStep = 0.0;
+    floor->offsetStep = -1.0;  // set by the line search (fullStep) if there is an offset
   } else {
     floor->previousStep = floor->step;
     floor->step = snorm;
@@ -157,9 +188,9 @@ PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm,
   PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
   if (*reason == SNES_CONVERGED_ITERATING && stepConverged(*floor, it, floor->previousStep, snorm, xnorm, stol))
     *reason = SNES_CONVERGED_SNORM_RELATIVE;
-  // (SNESConvergedDefault's own |du| < stol |u| included; its residual test, |R| <= rtol |R0|,
-  // stays: a residual reduced 1e10 times is converged with any matrix)
-  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && (fnorm > floor->fnorm0 || !keptMatrixConverged(*floor, it, snorm, xnorm)))
+  // (SNESConvergedDefault's own |du| < stol |u| included)
+  if (*reason == SNES_CONVERGED_SNORM_RELATIVE && fnorm > floor->fnorm0) *reason = SNES_CONVERGED_ITERATING;
+  if (*reason > 0 && !keptMatrixConverged(*floor, it, snorm, xnorm))
     *reason = SNES_CONVERGED_ITERATING;
   if (!std::isfinite(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;
   PetscFunctionReturn(0);

@@ -80,10 +80,10 @@ int main(int argc, char** argv) {
                           "{\"bench\": \"cantilever_3d_dynamics\", \"elements\": %d, \"length\": %.6e, \"ranks\": %d, \"dt\": %.3e, "
                           "\"steps\": %ld, \"setup_seconds\": %.6e, \"seconds\": %.6e, \"ms_per_step\": %.4f, "
                           "\"steady_ms_per_step\": %.4f, "
-                          "\"newton_per_step\": %.4f, \"failed\": %s, \"rejected_steps\": %ld, \"tip_z\": %.9e, \"static_tip_z\": %.6e}\n",
+                          "\"newton_per_step\": %.4f, \"newton_start\": \"%s\", \"failed\": %s, \"rejected_steps\": %ld, \"tip_z\": %.9e, \"static_tip_z\": %.6e}\n",
                           static_cast<int>(sizes[k]), static_cast<double>(L), ranks, static_cast<double>(dt), done, t1 - t0, t2 - t1, 1e3 * (t2 - t1) / std::max(done, 1L),
                           done > 1 ? 1e3 * (t2 - afterFirst) / (done - 1) : 0.0,
-                          double(newton) / std::max(done, 1L), failure.empty() ? "false" : "true", rejected, tip, staticTip));
+                          double(newton) / std::max(done, 1L), dyn.newtonStart().c_str(), failure.empty() ? "false" : "true", rejected, tip, staticTip));
     if (!failure.empty()) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "# %s\n", failure.c_str()));
     VecDestroy(&X);
     VecDestroy(&V);

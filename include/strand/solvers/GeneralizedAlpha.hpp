@@ -34,8 +34,12 @@
 //   - predictor X1 = X0 + h V0 + h^2/2 A0 (constant acceleration) instead of X1 = X0
 //     (-ts_strand_alpha_predictor displacement | velocity | acceleration; displacement is the
 //     robust start for fine, stiff meshes under suddenly applied loads, docs/performance.md).
-//     When Newton fails, the step is tried once more from X1 = X0 (counted as a rejected step),
-//     and the displacement predictor is kept from then on;
+//     At the first step after a start (GeneralizedAlphaSetAcceleration) the residual at the
+//     predictor is compared with that at X0, and X0 is kept for the run if its residual is
+//     smaller (-ts_strand_alpha_predictor_check false skips that): a load applied suddenly to a
+//     fine mesh gives an A0 that jumps at a support, and the predictor kinks the elements there.
+//     When Newton fails anyway, the step is tried once more from X1 = X0 (counted as a rejected
+//     step), and the displacement predictor is kept from then on;
 //   - index-3 constraints (Arnold & Bruls 2007, Sec. 4): Lagrange multipliers are entries of X
 //     marked algebraic; their rows hold s g(q1) at t_{n+1}, so the position constraints hold to
 //     Newton tolerance at every step (no drift).
@@ -76,6 +80,18 @@ PetscErrorCode GeneralizedAlphaSetAlgebraic(TS ts, Vec mask);
 // their values at time t.
 using PrescribeFn = PetscErrorCode (*)(PetscReal t, Vec X, Vec V, Vec A, void* ctx);
 PetscErrorCode GeneralizedAlphaSetPrescribedMotion(TS ts, PrescribeFn prescribe, void* ctx);
+// When X holds displacements u from reference coordinates q0 (q = q0 + u): |q0|, the scale of
+// their round-off (the first step's check ignores a predictor that moves X by round-off only).
+PetscErrorCode GeneralizedAlphaSetCoordinateNorm(TS ts, PetscReal norm);
+// The Newton start in use: "acceleration" (X0 + h V0 + h^2/2 A0, the default), "velocity" or
+// "displacement" (X0): set by -ts_strand_alpha_predictor, and changed to "displacement" for the rest
+// of the run by the first step's check or by a Newton failure (see the top of this file).
+PetscErrorCode GeneralizedAlphaGetPredictor(TS ts, const char** name);
+// Within a step whose Newton starts from X0 or X0 + h V0: the constant-acceleration predictor
+// X0 + h V0 + h^2/2 A0 minus that start (0 on prescribed entries); null otherwise. Its distance
+// from the Newton iterate estimates the local error (NewtonConvergence.hpp, NewtonFloor::offset).
+PetscErrorCode GeneralizedAlphaGetPredictorOffset(TS ts, Vec* offset);
+
 // After a failed Newton solve, retry(ctx, &again) is told (e.g. to build a fresh Newton matrix,
 // NewtonMatrixReuse) and may ask for one more attempt of the same step from X1 = X0 before the
 // failure goes to TSAdaptCheckStage (the TS retries anyway after a failure from a predictor other

@@ -12,12 +12,19 @@ struct NewtonFloor {
   PetscInt iteration = -1;                        // of the last test
   PetscReal step = 0.0, previousStep = 0.0;       // |du| of the last two Newton corrections
   PetscReal fnorm = 0.0;                          // |R| after the last one
-  PetscReal firstStep = 0.0;                      // |du_1|, the first correction of this solve
+  PetscReal firstStep = 0.0;                      // |du_1| (see offset), the first correction of this solve
   // Set by the dynamic Jacobian callback at every iterate (NewtonMatrixReuse's decision): the next
   // correction comes from a kept matrix. Such a correction is accepted only if it is itself at most
   // keptTolerance |du_1| or at round-off (the .cpp says why).
   bool keptMatrix = false;
   PetscReal keptTolerance = 0.0;  // 0 switches that rule off (statics)
+  // When Newton starts elsewhere than at the constant-acceleration predictor X_a (a dynamic step from
+  // X0 or X0 + h V0): X_a minus the start, set by the Jacobian callback at every iterate
+  // (GeneralizedAlphaGetPredictorOffset); null otherwise. The reference of that rule is then
+  // min(|du_1|, |X_1 - X_a|), X_1 the first iterate: |X_1 - X_a| estimates the local error, where
+  // |du_1| is the start's error, O(h) from X0. (offsetStep: |X_1 - X_a| of this solve, -1 if none.)
+  Vec offset = nullptr;
+  PetscReal offsetStep = -1.0;
   // The contraction of the last two corrections, theta = |du_k| / |du_{k-1}| (0 before two are known).
   PetscReal contraction() const { return iteration >= 2 && previousStep > 0.0 ? step / previousStep : 0.0; }
 };
