@@ -66,6 +66,7 @@ void writeDynamicsCheckpoint(MPI_Comm comm, const model::SceneDescription& scene
   if (s.a) vecs.push_back({"a", s.a});
   for (const auto& [name, v] : vecs) PetscCallAbort(comm, problem.assembler().toModelOrder(v, c.vectors[name]));
   // ABM4's history: f_k = (u', v') per entry; fixed-step BDF's: y_k = (u, v); each half in model numbering
+  if (s.newtonStart >= 0) c.scalars["newton_start"] = s.newtonStart;  // generalized-alpha's Newton start
   c.scalars["history_count"] = s.historyCount;
   c.scalars["history_step"] = s.historyStep;
   if (!s.historyTimes.empty()) {  // fixed-step BDF: states y_k (not rates) at these times
@@ -194,6 +195,7 @@ int resumeDynamics(MPI_Comm comm, const io::CheckpointData& data, const std::str
     s.A = A;
     s.a = a;
   }
+  if (sc.count("newton_start")) s.newtonStart = static_cast<int>(sc.at("newton_start"));
   const int historyCount = sc.count("history_count") ? static_cast<int>(sc.at("history_count")) : 0;
   if (historyCount > 0 && dyn.stateSpace()) {
     s.historyCount = historyCount;

@@ -257,7 +257,7 @@ private:
     if (!newtonStart.empty()) {
       _writer->setAttribute("newton_start", newtonStart);
       if (newtonStart != "acceleration")
-        say("Newton started from the " + newtonStart + " predictor (docs/user-guide.md, \"Newton start\")");
+        say("Newton start in use: the " + newtonStart + " predictor (docs/user-guide.md, \"Newton start\")");
     }
     int code = failure->empty() ? kExitSuccess : kExitDiverged;
     if (code == kExitSuccess && dyn.stoppedByRequest()) {

@@ -401,7 +401,7 @@ std::string Dynamics::newtonStart() const {
   PetscBool ours;
   const char* name = "";
   PetscCallAbort(PETSC_COMM_SELF, PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
-  if (ours) PetscCallAbort(PETSC_COMM_SELF, GeneralizedAlphaGetPredictor(_ts, &name));
+  if (ours) PetscCallAbort(PETSC_COMM_SELF, GeneralizedAlphaGetPredictor(_ts, nullptr, &name));
   return name;
 }
 
@@ -644,6 +644,8 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     if (ours) {
       if (_resuming) {
         PetscCall(GeneralizedAlphaSetState(_ts, _resume.A, _resume.a));
+        // the start the run had chosen (older checkpoints: the option's, checked again)
+        if (_resume.newtonStart >= 0) PetscCall(GeneralizedAlphaSetPredictor(_ts, _resume.newtonStart));
       } else {
         Vec a;
         PetscCall(VecDuplicate(_a0, &a));

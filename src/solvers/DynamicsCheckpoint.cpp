@@ -25,7 +25,13 @@ PetscErrorCode Dynamics::saveState(ResumeState* s) {
   s->A = s->a = nullptr;
   PetscBool ours = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
-  if (ours) PetscCall(GeneralizedAlphaGetState(_ts, &s->A, &s->a));
+  s->newtonStart = -1;
+  if (ours) {
+    PetscInt which;
+    PetscCall(GeneralizedAlphaGetState(_ts, &s->A, &s->a));
+    PetscCall(GeneralizedAlphaGetPredictor(_ts, &which, nullptr));
+    s->newtonStart = static_cast<int>(which);
+  }
   s->historyCount = 0;
   PetscBool abm = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsAdamsBashforthMoulton, &abm));

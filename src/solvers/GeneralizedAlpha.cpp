@@ -161,8 +161,9 @@ PetscErrorCode choosePredictor(TS ts, Vec X1, PetscReal h) {
     if (which >= 2) PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
     if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, nullptr, nullptr, d->prescribeCtx));
     PetscCall(SNESComputeFunction(ts->snes, X1, F));
-    PetscBool domainError;
+    PetscBool domainError;  // set per rank: the same decision on every rank
     PetscCall(SNESGetFunctionDomainError(ts->snes, &domainError));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &domainError, 1, MPIU_BOOL, MPI_LOR, PetscObjectComm(reinterpret_cast<PetscObject>(ts))));
     PetscReal norm;
     PetscCall(VecNorm(F, NORM_2, &norm));
     if (domainError || !std::isfinite(norm)) norm = PETSC_MAX_REAL;
@@ -469,11 +470,22 @@ PetscErrorCode GeneralizedAlphaSetCoordinateNorm(TS ts, PetscReal norm) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode GeneralizedAlphaGetPredictor(TS ts, const char** name) {
+PetscErrorCode GeneralizedAlphaGetPredictor(TS ts, PetscInt* which, const char** name) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
   static const char* const names[] = {"displacement", "velocity", "acceleration"};
-  *name = names[dataOf(ts)->predictor];
+  if (which) *which = dataOf(ts)->predictor;
+  if (name) *name = names[dataOf(ts)->predictor];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaSetPredictor(TS ts, PetscInt which) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  PetscCheck(which >= 0 && which <= 2, PetscObjectComm(reinterpret_cast<PetscObject>(ts)), PETSC_ERR_ARG_OUTOFRANGE,
+             "predictor %d not in 0..2", static_cast<int>(which));
+  dataOf(ts)->predictor = static_cast<int>(which);
+  dataOf(ts)->checkPredictor = false;
   PetscFunctionReturn(0);
 }
 

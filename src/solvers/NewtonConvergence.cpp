@@ -41,8 +41,8 @@ namespace {
 // (Its own size, not theta/(1 - theta) of it: theta is not trustworthy here.) A correction at the
 // round-off of the coordinates, 10 eps max(|u|, |q0|), is accepted too: a step at rest has a first
 // correction of that size, which a kept matrix cannot reduce 1000x (it would be rebuilt instead).
-// The reference of a solve whose first correction is du_1 (|du_1| = snorm): |du_1|, or the
-// local-error estimate |X_1 - X_a| when smaller (NewtonFloor::offset).
+// The reference of a solve whose first correction is du_1: |du_1|, or the local-error estimate
+// |X_k - X_a| of the current iterate when smaller (NewtonFloor::offset).
 PetscReal firstStepReference(const NewtonFloor& floor, PetscReal firstStep) {
   return floor.offsetStep >= 0.0 ? std::min(firstStep, floor.offsetStep) : firstStep;
 }
@@ -148,6 +148,7 @@ PetscErrorCode fullStep(SNESLineSearch ls, void* ctx) {
     PetscCall(SNESGetFunctionDomainError(snes, &domainError));
     if (domainError) {  // back to the last iterate (to round-off), as a failed line search leaves it
       PetscCall(VecAXPY(X, lambda, Y));
+      if (floor->offset) PetscCall(VecAXPY(floor->offset, -lambda, Y));
       PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_DOMAIN));
       PetscFunctionReturn(0);
     }

@@ -83,6 +83,7 @@ struct ResumeState {
   std::vector<Vec> history = std::vector<Vec>(8, nullptr);  // ABM4's rates or BDF's states (owned by whoever filled them)
   std::vector<double> historyTimes;  // fixed-step BDF: the times of its states (most recent first)
   int bdfOrder = 1, bdfSteps = 0;    // fixed-step BDF: current order, steps since its start
+  int newtonStart = -1;  // generalized-alpha: the Newton start in use (GeneralizedAlphaGetPredictor); -1: none
 };
 
 class Dynamics {

@@ -83,10 +83,14 @@ PetscErrorCode GeneralizedAlphaSetPrescribedMotion(TS ts, PrescribeFn prescribe,
 // When X holds displacements u from reference coordinates q0 (q = q0 + u): |q0|, the scale of
 // their round-off (the first step's check ignores a predictor that moves X by round-off only).
 PetscErrorCode GeneralizedAlphaSetCoordinateNorm(TS ts, PetscReal norm);
-// The Newton start in use: "acceleration" (X0 + h V0 + h^2/2 A0, the default), "velocity" or
-// "displacement" (X0): set by -ts_strand_alpha_predictor, and changed to "displacement" for the rest
-// of the run by the first step's check or by a Newton failure (see the top of this file).
-PetscErrorCode GeneralizedAlphaGetPredictor(TS ts, const char** name);
+// The Newton start in use: which = 2, "acceleration" (X0 + h V0 + h^2/2 A0, the default), 1,
+// "velocity", or 0, "displacement" (X0): set by -ts_strand_alpha_predictor, and changed to
+// "displacement" for the rest of the run by the first step's check or by a Newton failure (see the
+// top of this file). Either pointer may be null.
+PetscErrorCode GeneralizedAlphaGetPredictor(TS ts, PetscInt* which, const char** name);
+// Continues a run with the Newton start `which` (a checkpoint's), without the first-step check.
+// Call after GeneralizedAlphaSetState.
+PetscErrorCode GeneralizedAlphaSetPredictor(TS ts, PetscInt which);
 // Within a step whose Newton starts from X0 or X0 + h V0: the constant-acceleration predictor
 // X0 + h V0 + h^2/2 A0 minus that start (0 on prescribed entries); null otherwise. Its distance
 // from the Newton iterate estimates the local error (NewtonConvergence.hpp, NewtonFloor::offset).

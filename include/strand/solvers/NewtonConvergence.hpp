@@ -20,9 +20,10 @@ struct NewtonFloor {
   PetscReal keptTolerance = 0.0;  // 0 switches that rule off (statics)
   // When Newton starts elsewhere than at the constant-acceleration predictor X_a (a dynamic step from
   // X0 or X0 + h V0): X_a minus the start, set by the Jacobian callback at every iterate
-  // (GeneralizedAlphaGetPredictorOffset); null otherwise. The reference of that rule is then
-  // min(|du_1|, |X_1 - X_a|), X_1 the first iterate: |X_1 - X_a| estimates the local error, where
-  // |du_1| is the start's error, O(h) from X0. (offsetStep: |X_1 - X_a| of this solve, -1 if none.)
+  // (GeneralizedAlphaGetPredictorOffset); null otherwise. The line search advances it to X_a - X_k
+  // for the current iterate X_k. The reference of that rule is then min(|du_1|, |X_k - X_a|):
+  // |X_k - X_a| tends to the local error, where |du_1| is the start's error, O(h) from X0.
+  // (offsetStep: |X_k - X_a|, -1 if there is none or another line search runs.)
   Vec offset = nullptr;
   PetscReal offsetStep = -1.0;
   // The contraction of the last two corrections, theta = |du_k| / |du_{k-1}| (0 before two are known).
