@@ -415,9 +415,7 @@ PetscErrorCode Dynamics::formJacobian(TS ts, PetscReal t, Vec U, Vec V, Vec, Pet
   PetscCall(self->_reuse.decide(snes, self->_floor, shiftA, shiftV, &rebuild));
   self->_floor.keptMatrix = !rebuild;
   // where Newton started away from the constant-acceleration predictor (NewtonFloor::offset)
-  PetscBool ours;
-  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ts), kTsGeneralizedAlpha, &ours));
-  if (ours) PetscCall(GeneralizedAlphaGetPredictorOffset(ts, &self->_floor.offset));
+  if (self->_ownAlpha) PetscCall(GeneralizedAlphaGetPredictorOffset(ts, &self->_floor.offset));
   if (rebuild) PetscCall(self->_asm.dynamicJacobian(U, self->_damped ? V : nullptr, t, shiftV, shiftA, J));
   PetscFunctionReturn(0);
 }
@@ -641,6 +639,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
     PetscCall(TS2SetSolution(_ts, X, V));
     PetscBool ours;
     PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
+    _ownAlpha = ours == PETSC_TRUE;
     if (ours) {
       if (_resuming) {
         PetscCall(GeneralizedAlphaSetState(_ts, _resume.A, _resume.a));

@@ -111,15 +111,25 @@ PetscErrorCode snesJacobian(SNES, Vec, Mat J, Mat P, TS ts) {
   PetscFunctionReturn(0);
 }
 
+// X, holding X0, becomes the Newton start `which`: X0 (0), + h V0 (1), + h^2/2 A0 (2), with the
+// prescribed entries at t_{n+1}.
+PetscErrorCode addPredictor(TS ts, int which, PetscReal h, Vec X) {
+  AlphaData* d = dataOf(ts);
+  PetscFunctionBeginUser;
+  if (which >= 1) PetscCall(VecAXPY(X, h, d->V0));
+  if (which >= 2) PetscCall(VecAXPY(X, 0.5 * h * h, d->A0));
+  if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X, nullptr, nullptr, d->prescribeCtx));
+  PetscFunctionReturn(0);
+}
+
 // offset = X0 + h V0 + h^2/2 A0 - X1 for the predictor X1 (0 on prescribed entries): the
 // constant-acceleration predictor's distance, which the Newton test uses to measure the local error
 // when Newton starts elsewhere (GeneralizedAlphaGetPredictorOffset).
 PetscErrorCode predictorOffset(TS ts, Vec X1, PetscReal h) {
   AlphaData* d = dataOf(ts);
   PetscFunctionBeginUser;
-  PetscCall(VecWAXPY(d->offset, h, d->V0, d->X0));
-  PetscCall(VecAXPY(d->offset, 0.5 * h * h, d->A0));
-  if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, d->offset, nullptr, nullptr, d->prescribeCtx));
+  PetscCall(VecCopy(d->X0, d->offset));
+  PetscCall(addPredictor(ts, 2, h, d->offset));
   PetscCall(VecAXPY(d->offset, -1.0, X1));
   PetscFunctionReturn(0);
 }
@@ -157,9 +167,7 @@ PetscErrorCode choosePredictor(TS ts, Vec X1, PetscReal h) {
   }
   for (int which : {0, d->predictor}) {
     PetscCall(VecCopy(d->X0, X1));
-    if (which >= 1) PetscCall(VecAXPY(X1, h, d->V0));
-    if (which >= 2) PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
-    if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, nullptr, nullptr, d->prescribeCtx));
+    PetscCall(addPredictor(ts, which, h, X1));
     PetscCall(SNESComputeFunction(ts->snes, X1, F));
     PetscBool domainError;  // set per rank: the same decision on every rank
     PetscCall(SNESGetFunctionDomainError(ts->snes, &domainError));
@@ -209,9 +217,7 @@ PetscErrorCode step(TS ts) {
       // predictor: constant acceleration (or velocity, or displacement)
       if (!fresh) PetscCall(VecCopy(d->X0, X1));
       fresh = PETSC_FALSE;
-      if (d->predictor >= 1) PetscCall(VecAXPY(X1, h, d->V0));
-      if (d->predictor >= 2) PetscCall(VecAXPY(X1, 0.5 * h * h, d->A0));
-      if (d->prescribe) PetscCall(d->prescribe(ts->ptime + h, X1, nullptr, nullptr, d->prescribeCtx));
+      PetscCall(addPredictor(ts, d->predictor, h, X1));
       if (d->predictor < 2) PetscCall(predictorOffset(ts, X1, h));
       PetscCall(TSPreStage(ts, d->stageTime));
       PetscCall(SNESSolve(ts->snes, nullptr, X1));

@@ -62,61 +62,55 @@ bool stepConverged(const NewtonFloor& floor, PetscInt it, PetscReal previousStep
   return it > 0 && keptMatrixConverged(floor, it, snorm, xnorm) && error < stol * std::max(xnorm, floor.coordinateNorm);
 }
 
-// u -= lambda du and the sums of squares of both; restrict (distinct vectors) lets the compiler
-// vectorize it.
+// u -= lambda du and the sums of squares of both; with an offset p (NewtonFloor::offset, X_a - u
+// before the correction) also p += lambda du and its sum of squares. restrict (distinct vectors)
+// lets the compiler vectorize it.
+template <bool withOffset>
 void stepLoop(PetscInt n, PetscReal lambda, PetscScalar* PETSC_RESTRICT u, const PetscScalar* PETSC_RESTRICT du,
-              PetscReal sums[2]) {
-  PetscReal uu = 0.0, dd = 0.0;
+              PetscScalar* PETSC_RESTRICT p, PetscReal sums[3]) {
+  PetscReal uu = 0.0, dd = 0.0, pp = 0.0;
   for (PetscInt i = 0; i < n; ++i) {
     u[i] -= lambda * du[i];
     uu += PetscRealPart(u[i] * PetscConj(u[i]));
     dd += PetscRealPart(du[i] * PetscConj(du[i]));
+    if constexpr (withOffset) {
+      p[i] += lambda * du[i];
+      pp += PetscRealPart(p[i] * PetscConj(p[i]));
+    }
   }
   sums[0] = uu;
   sums[1] = dd;
+  sums[2] = pp;
 }
 
 // X -= lambda Y in place, and |X|, |Y| (2-norms) from the same pass (memory-bound: SNES's basic
-// line search writes W = X - lambda Y, reads both for the norms and copies W back to X).
-PetscErrorCode updateInPlace(Vec X, Vec Y, PetscReal lambda, PetscReal* xnorm, PetscReal* ynorm) {
+// line search writes W = X - lambda Y, reads both for the norms and copies W back to X). With an
+// offset (X_a - X before the step; null: none) also offset += lambda Y and *offsetNorm = |offset|,
+// |X_a - X| of the new iterate, in that pass and reduction.
+PetscErrorCode updateInPlace(Vec X, Vec Y, PetscReal lambda, Vec offset, PetscReal* xnorm, PetscReal* ynorm,
+                             PetscReal* offsetNorm) {
   PetscInt n;
-  PetscScalar* x;
+  PetscScalar *x, *p = nullptr;
   const PetscScalar* y;
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(X, &n));
   PetscCall(VecGetArray(X, &x));
   PetscCall(VecGetArrayRead(Y, &y));
-  PetscReal sums[2], global[2];
-  stepLoop(n, lambda, x, y, sums);
-  PetscCall(PetscLogFlops(6.0 * n));
+  PetscReal sums[3], global[3];
+  if (offset) {
+    PetscCall(VecGetArray(offset, &p));
+    stepLoop<true>(n, lambda, x, y, p, sums);
+    PetscCall(VecRestoreArray(offset, &p));
+  } else {
+    stepLoop<false>(n, lambda, x, y, nullptr, sums);
+  }
+  PetscCall(PetscLogFlops((offset ? 9.0 : 6.0) * n));
   PetscCall(VecRestoreArrayRead(Y, &y));
   PetscCall(VecRestoreArray(X, &x));
-  PetscCallMPI(MPI_Allreduce(sums, global, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(X))));
+  PetscCallMPI(MPI_Allreduce(sums, global, offset ? 3 : 2, MPIU_REAL, MPIU_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(X))));
   *xnorm = std::sqrt(global[0]);
   *ynorm = std::sqrt(global[1]);
-  PetscFunctionReturn(0);
-}
-
-// offset = X_a - X for the iterate X before the correction du: after it, X - du, so offset += du;
-// *distance = |offset|, |X_a - X| of the new iterate (NewtonFloor::offset).
-PetscErrorCode advanceOffset(Vec du, PetscReal lambda, Vec offset, PetscReal* distance) {
-  PetscInt n;
-  const PetscScalar* y;
-  PetscScalar* p;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(du, &n));
-  PetscCall(VecGetArrayRead(du, &y));
-  PetscCall(VecGetArray(offset, &p));
-  PetscReal sum = 0.0, global;
-  for (PetscInt i = 0; i < n; ++i) {
-    p[i] += lambda * y[i];
-    sum += PetscRealPart(p[i] * PetscConj(p[i]));
-  }
-  PetscCall(PetscLogFlops(3.0 * n));
-  PetscCall(VecRestoreArray(offset, &p));
-  PetscCall(VecRestoreArrayRead(du, &y));
-  PetscCallMPI(MPI_Allreduce(&sum, &global, 1, MPIU_REAL, MPIU_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(du))));
-  *distance = std::sqrt(global);
+  if (offset) *offsetNorm = std::sqrt(global[2]);
   PetscFunctionReturn(0);
 }
 
@@ -135,9 +129,8 @@ PetscErrorCode fullStep(SNESLineSearch ls, void* ctx) {
   PetscCall(SNESLineSearchGetNorms(ls, &xnorm, &fnorm, &ynorm));
   PetscCall(SNESLineSearchGetLambda(ls, &lambda));
   PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_SUCCEEDED));
-  PetscCall(updateInPlace(X, Y, lambda, &xnorm, &ynorm));
+  PetscCall(updateInPlace(X, Y, lambda, floor->offset, &xnorm, &ynorm, &floor->offsetStep));
   PetscCall(SNESGetIterationNumber(snes, &it));
-  if (floor->offset) PetscCall(advanceOffset(Y, lambda, floor->offset, &floor->offsetStep));
   PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
   // the test of iteration it + 1 sees |R| of this iterate (fnorm <= fnorm0 lets it accept)
   const bool accepted = floor->iteration == it && floor->fnorm <= floor->fnorm0 &&

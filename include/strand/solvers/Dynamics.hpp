@@ -168,6 +168,7 @@ private:
   Vec _multipliers = nullptr, _notMultiplier = nullptr;  // 1 / 0 on multiplier DOFs, and 1 - that
   bool _damped = false, _moving = false, _constrained = false;
   bool _firstOrder = false, _explicit = false;  // StateSpace form; RK4 / ABM4
+  bool _ownAlpha = false;                        // run() integrates with our strand_alpha TS
   std::string _schemeName;
   KSP _massSolver = nullptr;              // first-order form: the masked mass, factored once
   std::unique_ptr<StateSpace> _space;
