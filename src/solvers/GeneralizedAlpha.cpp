@@ -334,11 +334,13 @@ PetscErrorCode setFromOptions(TS ts, PetscOptionItems* PetscOptionsObject) {
   const char* const predictors[] = {"displacement", "velocity", "acceleration", "Predictor", "", nullptr};
   PetscInt which = d->predictor;
   PetscCall(PetscOptionsEList("-ts_strand_alpha_predictor", "Newton start: X0, X0 + h V0, or X0 + h V0 + h^2/2 A0",
-                              "", predictors, 3, predictors[which], &which, nullptr));
+                              "", predictors, 3, predictors[which], &which, &set));
   d->predictor = static_cast<int>(which);
-  PetscBool check = d->predictorCheck ? PETSC_TRUE : PETSC_FALSE;
+  // a start named on the command line is the start used: no check, unless also asked for
+  PetscBool check = d->predictorCheck && !set ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscOptionsBool("-ts_strand_alpha_predictor_check",
-                             "At the first step, start from X0 for the run if its residual is smaller than the predictor's", "",
+                             "At the first step, start from X0 for the run if its residual is smaller than the predictor's "
+                             "(default: true, false when -ts_strand_alpha_predictor is given)", "",
                              check, &check, nullptr));
   d->predictorCheck = check == PETSC_TRUE;
   PetscOptionsHeadEnd();

@@ -279,6 +279,10 @@ TEST(Dynamics, KeptNewtonMatrixFollowsFullNewtonWithFewerMatrices) {
   for (const AlphaRun* r : {&full, &half, &kept, &accel}) EXPECT_EQ(r->failure, "");
   EXPECT_EQ(kept.newtonStart, "displacement");
   EXPECT_EQ(accel.newtonStart, "acceleration");
+  // a start named on the command line is used as named: no check overrides it
+  const AlphaRun named = releaseCantilever(100, 1e-3, 100, {"-dyn_ts_strand_alpha_predictor", "acceleration"});
+  EXPECT_EQ(named.newtonStart, "acceleration");
+  EXPECT_EQ(named.tip[2], accel.tip[2]);
   EXPECT_GT(scheme, 1e-6);  // the scheme's error, far above the Newton tolerance
   EXPECT_LT(std::abs(kept.tip[2] - full.tip[2]), 0.001 * scheme);
   EXPECT_LT(std::abs(accel.tip[2] - full.tip[2]), 0.001 * scheme);
