@@ -398,10 +398,8 @@ PetscErrorCode Dynamics::retryNewton(void* ctx, PetscBool* again) {
 }
 
 std::string Dynamics::newtonStart() const {
-  PetscBool ours;
   const char* name = "";
-  PetscCallAbort(PETSC_COMM_SELF, PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
-  if (ours) PetscCallAbort(PETSC_COMM_SELF, GeneralizedAlphaGetPredictor(_ts, nullptr, &name));
+  if (_ownAlpha) PetscCallAbort(PETSC_COMM_SELF, GeneralizedAlphaGetPredictor(_ts, nullptr, &name));
   return name;
 }
 

@@ -14,6 +14,9 @@ namespace strand::solvers {
 
 namespace {
 
+// The Newton starts by number (AlphaData::predictor): the option's values and the names reported.
+const char* const kPredictorNames[] = {"displacement", "velocity", "acceleration"};
+
 struct AlphaData {
   PetscReal alphaM = 0.0, alphaF = 0.0, gamma = 0.5, beta = 0.25;  // Newmark until set
   PetscReal stageTime = 0.0, shiftV = 0.0, shiftA = 0.0;
@@ -180,7 +183,7 @@ PetscErrorCode choosePredictor(TS ts, Vec X1, PetscReal h) {
   PetscCall(VecDestroy(&F));
   PetscCall(VecCopy(d->X0, X1));  // as step() expects it
   PetscCall(PetscInfo(ts, "first step: residual %g from the %s predictor, %g from X0: from %s for this run\n",
-                      static_cast<double>(predicted), d->predictor == 2 ? "acceleration" : "velocity",
+                      static_cast<double>(predicted), kPredictorNames[d->predictor],
                       static_cast<double>(still), still < predicted ? "X0" : "the predictor"));
   if (still < predicted) d->predictor = 0;
   PetscFunctionReturn(0);
@@ -235,7 +238,7 @@ PetscErrorCode step(TS ts) {
       if (d->retry) PetscCall(d->retry(d->retryCtx, &again));
       if (d->predictor > 0) {
         PetscCall(PetscInfo(ts, "Newton failed at t = %g from the %s predictor; from X0 from now on\n",
-                            static_cast<double>(ts->ptime + h), d->predictor == 2 ? "acceleration" : "velocity"));
+                            static_cast<double>(ts->ptime + h), kPredictorNames[d->predictor]));
         d->predictor = 0;
         again = PETSC_TRUE;
       }
@@ -331,10 +334,9 @@ PetscErrorCode setFromOptions(TS ts, PetscOptionItems* PetscOptionsObject) {
   PetscCall(PetscOptionsReal("-ts_strand_alpha_alpha_f", "alpha_f", "GeneralizedAlphaSetParams", d->alphaF, &d->alphaF, nullptr));
   PetscCall(PetscOptionsReal("-ts_strand_alpha_gamma", "gamma", "GeneralizedAlphaSetParams", d->gamma, &d->gamma, nullptr));
   PetscCall(PetscOptionsReal("-ts_strand_alpha_beta", "beta", "GeneralizedAlphaSetParams", d->beta, &d->beta, nullptr));
-  const char* const predictors[] = {"displacement", "velocity", "acceleration", "Predictor", "", nullptr};
   PetscInt which = d->predictor;
   PetscCall(PetscOptionsEList("-ts_strand_alpha_predictor", "Newton start: X0, X0 + h V0, or X0 + h V0 + h^2/2 A0",
-                              "", predictors, 3, predictors[which], &which, &set));
+                              "", kPredictorNames, 3, kPredictorNames[which], &which, &set));
   d->predictor = static_cast<int>(which);
   // a start named on the command line is the start used: no check, unless also asked for
   PetscBool check = d->predictorCheck && !set ? PETSC_TRUE : PETSC_FALSE;
@@ -481,9 +483,8 @@ PetscErrorCode GeneralizedAlphaSetCoordinateNorm(TS ts, PetscReal norm) {
 PetscErrorCode GeneralizedAlphaGetPredictor(TS ts, PetscInt* which, const char** name) {
   PetscFunctionBeginUser;
   PetscCall(checkType(ts));
-  static const char* const names[] = {"displacement", "velocity", "acceleration"};
   if (which) *which = dataOf(ts)->predictor;
-  if (name) *name = names[dataOf(ts)->predictor];
+  if (name) *name = kPredictorNames[dataOf(ts)->predictor];
   PetscFunctionReturn(0);
 }
 

@@ -112,7 +112,7 @@ public:
   // keeps one across iterations and steps while it contracts).
   long newtonMatrices() const { return _reuse.rebuilds(); }
   // The generalized-alpha family's Newton start in use ("acceleration", "velocity" or
-  // "displacement"; GeneralizedAlphaGetPredictor), "" for the other schemes.
+  // "displacement"; GeneralizedAlphaGetPredictor), "" for the other schemes and before run().
   std::string newtonStart() const;
   // Rebuild the Newton matrix when the corrections shrink by less than this factor per iteration
   // (default 0.1; -dyn_newton_matrix_contraction); 0: full Newton, a new matrix at every iterate.
