@@ -5,6 +5,7 @@
 
 #include "strand/elements/AncfCable.hpp"
 #include "strand/elements/NodalMoment.hpp"
+#include "ElementInserter.hpp"
 #include "Multibody.hpp"
 
 namespace strand::assembly {
@@ -168,6 +169,8 @@ public:
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
     double u[N], q0[N], K[N * N];
+    ElementInserter toJ;
+    PetscCall(ElementInserter::create(J, _dofs, &toJ));
     for (size_t k = 0; k < local.size(); ++k) {
       const model::ElementRef& er = els[local[k]];
       const model::Body& b = _model.bodies()[er.body];
@@ -175,7 +178,7 @@ public:
       E::tangent(b.section, geometry(b, er.index), _tab, q0, u, nullptr, nullptr, K, nullptr);
       if (omega2 != 0.0) addMassBlocks(er, b, -loadFactor * omega2, _projector, K);  // softening -Omega^2 M_P
       maskFixed(static_cast<int>(k), fixed, K);
-      PetscCall(MatSetValuesBlocked(J, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], K, ADD_VALUES));
+      PetscCall(toJ.add(static_cast<int>(k), K));
     }
     PetscCall(momentTangents(x, loadFactor, J, fixed));
     PetscFunctionReturn(0);
@@ -207,6 +210,9 @@ public:
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
     double u[N], q0[N], ve[N], K[N * N], Dm[N * N];
+    ElementInserter toJ, toD;
+    PetscCall(ElementInserter::create(J, _dofs, &toJ));
+    if (Dmat) PetscCall(ElementInserter::create(Dmat, _dofs, &toD));
     for (size_t k = 0; k < local.size(); ++k) {
       const model::ElementRef& er = els[local[k]];
       const model::Body& b = _model.bodies()[er.body];
@@ -214,17 +220,16 @@ public:
       if (v) gatherVelocity(static_cast<int>(k), v, ve);
       const bool damped = v && (b.section.dampAxial != 0.0 || b.section.dampBending != 0.0);
       E::tangent(b.section, geometry(b, er.index), _tab, q0, u, v ? ve : nullptr, nullptr, K, damped ? Dm : nullptr);
-      const PetscInt* gb = &_dofs.elementGlobalBlocks()[4 * k];
       if (damped) {
         for (int i = 0; i < N * N; ++i) K[i] += shiftV * Dm[i];
         if (Dmat) {
           maskFixed(static_cast<int>(k), fixed, Dm);
-          PetscCall(MatSetValuesBlocked(Dmat, 4, gb, 4, gb, Dm, ADD_VALUES));
+          PetscCall(toD.add(static_cast<int>(k), Dm));
         }
       }
       addMassBlocks(er, b, shiftA, _identity, K);
       maskFixed(static_cast<int>(k), fixed, K);
-      PetscCall(MatSetValuesBlocked(J, 4, gb, 4, gb, K, ADD_VALUES));
+      PetscCall(toJ.add(static_cast<int>(k), K));
     }
     PetscCall(momentTangents(x, loadFactor, J, fixed));
     PetscFunctionReturn(0);
@@ -275,12 +280,14 @@ private:
     const auto& els = _model.elements();
     const auto& local = _dofs.localElements();
     double Ae[N * N];
+    ElementInserter toA;
+    PetscCall(ElementInserter::create(A, _dofs, &toA));
     for (size_t k = 0; k < local.size(); ++k) {
       const model::ElementRef& er = els[local[k]];
       for (double& a : Ae) a = 0.0;
       addMassBlocks(er, _model.bodies()[er.body], s, X, Ae);
       maskFixed(static_cast<int>(k), fixed, Ae);
-      PetscCall(MatSetValuesBlocked(A, 4, &_dofs.elementGlobalBlocks()[4 * k], 4, &_dofs.elementGlobalBlocks()[4 * k], Ae, ADD_VALUES));
+      PetscCall(toA.add(static_cast<int>(k), Ae));
     }
     PetscFunctionReturn(0);
   }

@@ -6,7 +6,10 @@
 //     vector of the same sizes does not, even when given the layout's local-to-global mapping;
 //  2. the damped dynamic residual, the strain energy and the Newton matrix of a cable with rigid
 //     bodies, joints and a nodal moment (every term that reads X and V) are equal both ways;
-//  3. a joint product whose output is one of its inputs (R = W) gives the result of a separate R.
+//  3. a joint product whose output is one of its inputs (R = W) gives the result of a separate R;
+//  4. the element matrices that ElementInserter puts straight into an MPIBAIJ's diagonal part (the
+//     elements whose blocks are all owned) make the same Newton, damping and mass matrices as
+//     MatSetValuesBlocked into an AIJ matrix, which always takes the general path.
 #include <gtest/gtest.h>
 #include <petscmat.h>
 
@@ -132,6 +135,43 @@ TEST(AssemblerLocalForms, AJointProductIntoOneOfItsInputsIsThatOfASeparateOutput
   EXPECT_GT(norm(R), 0.0);
   EXPECT_EQ(maxDifference(R, W), 0.0);
   for (Vec* v : {&X, &W, &R}) VecDestroy(v);
+}
+
+// m converted to AIJ equals ref (AIJ), bit for bit
+bool equalAsAij(Mat m, Mat ref) {
+  Mat c;
+  PetscBool equal;
+  PetscCallAbort(comm(), MatConvert(m, MATAIJ, MAT_INITIAL_MATRIX, &c));
+  PetscCallAbort(comm(), MatEqual(c, ref, &equal));
+  PetscCallAbort(comm(), MatDestroy(&c));
+  return equal;
+}
+
+TEST(AssemblerLocalForms, ElementsInsertedIntoTheDiagonalPartGiveTheGeneralPathsMatrices) {
+  solvers::Problem p(comm(), cableWithTwoBodies3d(2e9));  // damped: the damping matrix too
+  assembly::Assembler& a = p.assembler();
+  Vec X = randomVector(p, 5, 1e-2), V = randomVector(p, 6, 1.0);
+  Mat J, D, M, Ja, Da, Ma;  // default BAIJ (MPIBAIJ on two ranks) and AIJ
+  for (Mat* m : {&J, &D, &M}) PetscCallAbort(comm(), p.dofs().createMatrix(m, nullptr));
+  for (Mat* m : {&Ja, &Da, &Ma}) PetscCallAbort(comm(), p.dofs().createMatrix(m, nullptr, MATAIJ));
+  for (int pass = 0; pass < 2; ++pass) {  // the first assembly fixes the structure, the second reuses it
+    PetscCallAbort(comm(), a.dynamicJacobian(X, V, 0.3, 2e3, 4e6, J, D));
+    PetscCallAbort(comm(), a.dynamicJacobian(X, V, 0.3, 2e3, 4e6, Ja, Da));
+    PetscCallAbort(comm(), a.massMatrix(M));
+    PetscCallAbort(comm(), a.massMatrix(Ma));
+    PetscReal nJ, nD, nM;
+    PetscCallAbort(comm(), MatNorm(J, NORM_FROBENIUS, &nJ));
+    PetscCallAbort(comm(), MatNorm(D, NORM_FROBENIUS, &nD));
+    PetscCallAbort(comm(), MatNorm(M, NORM_FROBENIUS, &nM));
+    EXPECT_GT(nJ, 1e6);
+    EXPECT_GT(nD, 0.0);
+    EXPECT_GT(nM, 0.0);
+    EXPECT_TRUE(equalAsAij(J, Ja)) << "Newton matrix, pass " << pass;
+    EXPECT_TRUE(equalAsAij(D, Da)) << "damping matrix, pass " << pass;
+    EXPECT_TRUE(equalAsAij(M, Ma)) << "mass matrix, pass " << pass;
+  }
+  for (Mat* m : {&J, &D, &M, &Ja, &Da, &Ma}) MatDestroy(m);
+  for (Vec* v : {&X, &V}) VecDestroy(v);
 }
 
 }  // namespace
