@@ -2,7 +2,7 @@
 //
 // On one rank a matrix is SeqBAIJ, whose MatSetValuesBlocked inserts row by row. On several ranks
 // it is MPIBAIJ, whose MatSetValuesBlocked copies and inserts block by block, a search in the row
-// for each of the 16 blocks: at 1e5 cable elements that took 2.5 % of a two-rank time step against
+// for each of the 16 blocks: at 1e5 cable elements that took 1.7-2.5 % of a two-rank time step against
 // under 0.4 % for the one-rank insertion (perf, docs/performance.md session 24). An element whose
 // four blocks this rank owns therefore goes straight into the MPIBAIJ's diagonal part, a SeqBAIJ
 // numbered from the first owned block (MatMPIBAIJGetSeqBAIJ), which is where MatSetValuesBlocked
