@@ -46,10 +46,7 @@ inline PetscErrorCode ElementInserter::create(Mat A, const model::DofMap& dofs, 
   out->_dofs = &dofs;
   out->_diag = nullptr;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), MATMPIBAIJ, &mpibaij));
-  if (mpibaij) {
-    Mat off;
-    PetscCall(MatMPIBAIJGetSeqBAIJ(A, &out->_diag, &off, nullptr));
-  }
+  if (mpibaij) PetscCall(MatMPIBAIJGetSeqBAIJ(A, &out->_diag, nullptr, nullptr));
   PetscFunctionReturn(0);
 }
 
