@@ -13,8 +13,14 @@ adds "pair_floor": half the slower one's steady time over the one-rank time, the
 with no communication and no imbalance at all would reach while both cores run this very work
 (0.5 if they did not slow each other through the shared caches and memory; each job holds twice
 a rank's data, so the floor is if anything high), and "ratio_over_floor".
-The summary also gives the fastest steady step of each rank count over the rounds and their ratio,
-"ratio_of_minima": the estimate of the ratio on a machine without other tenants (noise only adds).
+When bench_coupling_cost sits next to BENCH too, the summary adds "coupling_cost_compute" and
+"coupling_cost_memory": how much longer the same synthetic work takes on two ranks when they
+all-reduce every millisecond than when they never communicate (1.0: waiting costs nothing on this
+host; the excess is what any coupled job pays here for the host's varying core speeds).
+The summary adds the medians of the floors and of "ratio_over_floor" (near 1: the two ranks lost
+only what the host takes from any two jobs; above: they also waited for each other), and the
+fastest steady step of each rank count over the rounds and their ratio, "ratio_of_minima": the
+estimate of the ratio on a machine without other tenants (noise only adds).
 With --rounds N (first after MPIEXEC; default 5) it alternates the one- and two-rank runs N times
 and ends with a summary line: every ratio, their median and largest, how many are at most the
 target, and "met": whether the median is. The target is read as the median of such rounds: on a
@@ -67,6 +73,7 @@ def main():
     options = rest or ["-elements", "100000", "-length", "100", "-steps", "40",
                        "-dyn_ts_strand_alpha_predictor", "displacement"]
     results = [one_round(bench, mpiexec, options) for _ in range(rounds)]
+    coupling = coupling_costs(bench, mpiexec)
     ratios = [r["ratio"] for r in results]
     floors = [r["pair_floor"] for r in results]
     median = statistics.median(ratios)
@@ -80,8 +87,22 @@ def main():
                       "median": round(median, 4), "max": max(ratios), "target": TARGET,
                       "at_most_target": sum(r <= TARGET for r in ratios), "met": median <= TARGET,
                       "pair_floors": floors, "median_pair_floor": round(statistics.median(floors), 4),
+                      "median_ratio_over_floor": round(statistics.median(r["ratio_over_floor"] for r in results), 4),
                       "min_steady_ms_per_step_1": min1, "min_steady_ms_per_step_2": min2,
-                      "ratio_of_minima": round(min2 / min1, 4)}))
+                      "ratio_of_minima": round(min2 / min1, 4), **coupling}))
+
+
+def coupling_costs(bench, mpiexec):
+    """What waiting costs on this host: bench_coupling_cost's median of coupled over uncoupled time
+    of the same synthetic work on two ranks (an all-reduce every ~1 ms, as in a step), for a
+    compute-bound and a memory-bound load. Empty when the benchmark was not built."""
+    path = os.path.join(os.path.dirname(bench), "bench_coupling_cost")
+    if not os.path.exists(path):
+        return {}
+    costs = {}
+    for load, flags in (("compute", ["-compute"]), ("memory", [])):
+        costs["coupling_cost_" + load] = run([mpiexec, "-n", "2", path, "-rounds", "3"] + flags)["median_ratio"]
+    return costs
 
 
 def one_round(bench, mpiexec, options):
