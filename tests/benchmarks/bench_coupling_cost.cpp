@@ -20,6 +20,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "support/SlowestRank.hpp"
+
 namespace {
 
 // One chunk of work on entries i0..i1: memory-bound (y += a x, 24 bytes per entry from memory) or
@@ -41,18 +43,14 @@ void chunkOfWork(std::vector<double>& y, const std::vector<double>& x, std::size
 double timedPasses(std::vector<double>& y, const std::vector<double>& x, PetscInt chunk, PetscInt passes, bool compute,
                    bool coupled) {
   const std::size_t n = x.size(), step = static_cast<std::size_t>(chunk);
-  double token = 0.0, sum = 0.0;
-  MPI_Barrier(PETSC_COMM_WORLD);
-  const double start = MPI_Wtime();
-  for (PetscInt p = 0; p < passes; ++p)
-    for (std::size_t i0 = 0; i0 < n; i0 += step) {
-      chunkOfWork(y, x, i0, std::min(n, i0 + step), compute);
-      if (coupled) MPI_Allreduce(&token, &sum, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-    }
-  const double mine = MPI_Wtime() - start;
-  double slowest;
-  MPI_Allreduce(&mine, &slowest, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
-  return slowest;
+  return strand::testing::slowestRankSeconds(PETSC_COMM_WORLD, [&] {
+    double token = 0.0, sum = 0.0;
+    for (PetscInt p = 0; p < passes; ++p)
+      for (std::size_t i0 = 0; i0 < n; i0 += step) {
+        chunkOfWork(y, x, i0, std::min(n, i0 + step), compute);
+        if (coupled) MPI_Allreduce(&token, &sum, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+      }
+  });
 }
 
 }  // namespace

@@ -12,21 +12,7 @@
 
 #include <cstdio>
 
-namespace {
-
-// seconds for `repeat` calls of op on every rank at once (the slowest rank's)
-template <class Op>
-double timed(int repeat, Op op) {
-  MPI_Barrier(PETSC_COMM_WORLD);
-  const double start = MPI_Wtime();
-  for (int i = 0; i < repeat; ++i) op();
-  const double mine = MPI_Wtime() - start;
-  double slowest;
-  MPI_Allreduce(&mine, &slowest, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
-  return slowest;
-}
-
-}  // namespace
+#include "support/SlowestRank.hpp"
 
 int main(int argc, char** argv) {
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
@@ -41,8 +27,13 @@ int main(int argc, char** argv) {
   PetscCall(VecSet(x, 1.0));
   PetscCall(VecSet(y, 2.0));
   PetscCall(VecAXPY(y, 1e-9, x));  // touch both once before timing
-  const double axpy = timed(static_cast<int>(repeat), [&] { PetscCallAbort(PETSC_COMM_SELF, VecAXPY(y, 1e-9, x)); });
-  const double copy = timed(static_cast<int>(repeat), [&] { PetscCallAbort(PETSC_COMM_SELF, VecCopy(x, y)); });
+  using strand::testing::slowestRankSeconds;
+  const double axpy = slowestRankSeconds(PETSC_COMM_WORLD, [&] {
+    for (PetscInt i = 0; i < repeat; ++i) PetscCallAbort(PETSC_COMM_SELF, VecAXPY(y, 1e-9, x));
+  });
+  const double copy = slowestRankSeconds(PETSC_COMM_WORLD, [&] {
+    for (PetscInt i = 0; i < repeat; ++i) PetscCallAbort(PETSC_COMM_SELF, VecCopy(x, y));
+  });
   const double gb = 1e-9 * static_cast<double>(n) * static_cast<double>(repeat) * sizeof(PetscScalar);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD,
                         "{\"bench\": \"memory_bandwidth\", \"ranks\": %d, \"doubles_per_rank\": %d, \"repeat\": %d, "
