@@ -4,7 +4,7 @@
 //
 // Every rank streams y += a x over its own vectors (default 3e6 doubles, 24 MB each, above the
 // caches: a memory-bound load like the sweeps and vector updates of a step) in chunks of `-chunk`
-// entries (default 1e6, about 1 ms here, the spacing of a 1e5-element step's synchronizations),
+// entries (default 1e6, about 1 ms here; a 1e5-element step synchronizes about every 2 ms),
 // `-passes` times over the vectors. Uncoupled, the run takes as long as the slower rank's own
 // work; coupled, each chunk takes as long as the slower rank's chunk, so the coupled run is slower
 // by the waiting that the host's varying speeds cause (a core slowed now on one rank, now on the
