@@ -30,7 +30,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
     Mat op;
     PetscBool compact;
     PetscCallAbort(comm, isotropicMassOperator(_M, &op, &compact));
-    PetscCallAbort(comm, PetscInfo(nullptr, "mass for products: %s\n", compact ? "M_s (x) I (MAIJ)" : "BAIJ"));
+    PetscCallAbort(comm, PetscInfo(nullptr, "mass for products: %s\n", compact ? "M_s (x) I" : "BAIJ"));
     PetscCallAbort(comm, MatDestroy(&_M));
     _M = op;
   }

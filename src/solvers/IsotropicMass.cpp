@@ -1,6 +1,8 @@
 // The compact mass operator M_s (x) I (IsotropicMass.hpp).
 #include "strand/solvers/IsotropicMass.hpp"
 
+#include "solvers/IsotropicMassProduct.hpp"
+
 #include <vector>
 
 namespace strand::solvers {
@@ -103,7 +105,10 @@ PetscErrorCode isotropicMassOperator(Mat M, Mat* op, PetscBool* compact) {
   }
   PetscCall(MatAssemblyBegin(Ms, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Ms, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatCreateMAIJ(Ms, bs, op));
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size == 1) PetscCall(MatCreateMAIJ(Ms, bs, op));
+  else PetscCall(splitIsotropicProduct(Ms, bs, op));
   PetscCall(MatDestroy(&Ms));
   PetscFunctionReturn(0);
 }

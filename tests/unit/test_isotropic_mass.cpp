@@ -1,7 +1,9 @@
 // requirement: the compact mass operator of time stepping (solvers/IsotropicMass.hpp) is the
-// assembled mass: M x through it equals the BAIJ product to round-off (every row sums the same
-// nonzero products; |dy| <= 1e-14 |M| |x| asserted), at -n 1 and -n 2. It is compact (MAIJ,
-// M_s (x) I) exactly when every block is a multiple of the identity, which the theory fixes:
+// assembled mass: M x, y + M x into y and into another vector through it equal the BAIJ products
+// to round-off (every row sums the same nonzero products; |dy| <= 1e-14 |M| |x| asserted), at -n 1
+// (PETSc's MAIJ) and -n 2 (the split product of IsotropicMassProduct.cpp, whose off-process part
+// visits only its nonzero rows). It is compact (M_s (x) I) exactly when every block is a multiple
+// of the identity, which the theory fixes:
 //  - a 3D ANCF cable with a point mass: M = rho A int N^T N dx (x) I_3 + m N^T N (x) I_3
 //    (docs/elements/ancf-cable.md "Mass", seed 003 Eq. 53): compact;
 //  - 3D rigid bodies in natural coordinates (a point and three unit vectors, each moving as a
@@ -47,7 +49,14 @@ bool checkOperator(const model::SceneDescription& scene) {
   PetscCallAbort(comm, VecAXPY(z, -2.0, y));
   PetscCallAbort(comm, VecNorm(z, NORM_INFINITY, &diff));
   EXPECT_LE(diff, 2e-14 * mNorm * xNorm);
-  for (Vec* v : {&x, &y, &z}) VecDestroy(v);
+  // and into another vector: w = y + M x
+  Vec w;
+  PetscCallAbort(comm, VecDuplicate(y, &w));
+  PetscCallAbort(comm, MatMultAdd(op, x, y, w));
+  PetscCallAbort(comm, VecAXPY(w, -2.0, y));
+  PetscCallAbort(comm, VecNorm(w, NORM_INFINITY, &diff));
+  EXPECT_LE(diff, 2e-14 * mNorm * xNorm);
+  for (Vec* v : {&x, &y, &z, &w}) VecDestroy(v);
   MatDestroy(&M);
   MatDestroy(&op);
   return compact == PETSC_TRUE;
