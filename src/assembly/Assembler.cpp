@@ -382,7 +382,6 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
   }
   _fixedLocal.assign(nLocal, 0);
   _q0Local.assign(nLocal, 0.0);
-  _nodalForceOwned.assign(dofs.ownedBlocks() * bs, 0.0);
   _multiplierOwned.assign(dofs.ownedBlocks() * bs, 0);
   _v0Owned.assign(dofs.ownedBlocks() * bs, 0.0);
   for (int b = 0; b < model.numBlocks(); ++b) {
@@ -392,12 +391,14 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
       _fixedLocal[lb * bs + i] = model.fixedDofs()[b * bs + i];
       _q0Local[lb * bs + i] = model.initialCoordinates()[b * bs + i];
       if (lb < dofs.ownedBlocks()) {
-        _nodalForceOwned[lb * bs + i] = model.nodalForces()[b * bs + i];
+        if (model.nodalForces()[b * bs + i] != 0.0) _nodalForceOwned.push_back({lb * bs + i, model.nodalForces()[b * bs + i]});
         _multiplierOwned[lb * bs + i] = model.multiplierDofs()[b * bs + i];
         _v0Owned[lb * bs + i] = model.initialVelocities()[b * bs + i];
       }
     }
   }
+  for (PetscInt i = 0; i < dofs.ownedBlocks() * bs; ++i)
+    if (_fixedLocal[i]) _fixedOwned.push_back(i);
   _noneFixed.assign(nLocal, 0);
   for (int h = 0; h < static_cast<int>(model.hubMotions().size()); ++h) {
     const model::HubMotion& hub = model.hubMotions()[h];
@@ -630,11 +631,9 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
   // owned rows: nodal forces and supports
   PetscScalar* owned;
   PetscCall(VecGetArray(r.owner, &owned));
-  const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();
-  for (PetscInt i = 0; i < n; ++i) owned[i] -= loadFactor * _nodalForceOwned[i];
+  for (const auto& [i, f] : _nodalForceOwned) owned[i] -= loadFactor * f;
   if (rows == SupportRows::Value)
-    for (PetscInt i = 0; i < n; ++i)
-      if (_fixedLocal[i]) owned[i] = x.a[i];
+    for (PetscInt i : _fixedOwned) owned[i] = x.a[i];
   PetscCall(VecRestoreArray(r.owner, &owned));
   PetscCall(endLocal(&x));
   if (V) PetscCall(endLocal(&v));
@@ -646,9 +645,8 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
 // The unit diagonal of supported rows (the element matrices were masked), then final assembly.
 PetscErrorCode Assembler::assembleWithSupportDiagonal(Mat J) const {
   PetscFunctionBeginUser;
-  const PetscInt bs = _dofs.blockSize(), n = _dofs.ownedBlocks() * bs, row0 = _dofs.ownedBegin() * bs;
-  for (PetscInt i = 0; i < n; ++i)
-    if (_fixedLocal[i]) PetscCall(MatSetValue(J, row0 + i, row0 + i, 1.0, ADD_VALUES));
+  const PetscInt row0 = _dofs.ownedBegin() * _dofs.blockSize();
+  for (PetscInt i : _fixedOwned) PetscCall(MatSetValue(J, row0 + i, row0 + i, 1.0, ADD_VALUES));
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
@@ -753,9 +751,7 @@ PetscErrorCode Assembler::zeroSupportedRows(Vec R) const {
   PetscFunctionBeginUser;
   PetscScalar* r;
   PetscCall(VecGetArray(R, &r));
-  const PetscInt n = _dofs.ownedBlocks() * _dofs.blockSize();
-  for (PetscInt i = 0; i < n; ++i)
-    if (_fixedLocal[i]) r[i] = 0.0;
+  for (PetscInt i : _fixedOwned) r[i] = 0.0;
   PetscCall(VecRestoreArray(R, &r));
   PetscFunctionReturn(0);
 }

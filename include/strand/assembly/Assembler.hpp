@@ -11,6 +11,7 @@
 #include <functional>
 #include <initializer_list>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "strand/model/DofMap.hpp"
@@ -162,7 +163,10 @@ private:
   std::vector<MovedBlock> _moved;          // owned blocks of hub supports
   std::vector<std::pair<PetscInt, int>> _movedCoordinates;  // owned index, Model::prescribedCoordinates() index
   std::vector<double> _q0Local;            // initial coordinates, ghosted local form
-  std::vector<double> _nodalForceOwned;    // constant nodal forces on owned DOFs
+  // the constant nodal forces and the supported DOFs among the owned ones, as lists: the residual
+  // and zeroSupportedRows visit these few entries instead of passing over every owned DOF
+  std::vector<std::pair<PetscInt, double>> _nodalForceOwned;  // (owned index, force)
+  std::vector<PetscInt> _fixedOwned;                          // owned indices
   VecScatter _toRoot = nullptr;
   Vec _rootVec = nullptr;
 };
