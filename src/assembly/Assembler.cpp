@@ -391,7 +391,8 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
       _fixedLocal[lb * bs + i] = model.fixedDofs()[b * bs + i];
       _q0Local[lb * bs + i] = model.initialCoordinates()[b * bs + i];
       if (lb < dofs.ownedBlocks()) {
-        if (model.nodalForces()[b * bs + i] != 0.0) _nodalForceOwned.push_back({lb * bs + i, model.nodalForces()[b * bs + i]});
+        const double force = model.nodalForces()[b * bs + i];
+        if (force != 0.0) _nodalForceOwned.push_back({lb * bs + i, force});
         _multiplierOwned[lb * bs + i] = model.multiplierDofs()[b * bs + i];
         _v0Owned[lb * bs + i] = model.initialVelocities()[b * bs + i];
       }

@@ -1,9 +1,9 @@
 // The compact mass operator M_s (x) I (IsotropicMass.hpp).
 #include "strand/solvers/IsotropicMass.hpp"
 
-#include "solvers/IsotropicMassProduct.hpp"
-
 #include <vector>
+
+#include "solvers/IsotropicMassProduct.hpp"
 
 namespace strand::solvers {
 

@@ -77,7 +77,8 @@ int main(int argc, char** argv) {
     const double alone = timedPasses(y, x, chunk, passes, compute, false);
     ratios.push_back(coupled / alone);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                          "{\"bench\": \"coupling_cost\", \"load\": \"%s\", \"ranks\": %d, \"chunk\": %d, \"chunks\": %d, "
+                          "{\"bench\": \"coupling_cost\", \"load\": \"%s\", \"ranks\": %d, \"chunk\": %d, "
+                          "\"chunks\": %d, "
                           "\"coupled_s\": %.4f, \"uncoupled_s\": %.4f, \"ratio\": %.4f}\n",
                           compute ? "compute" : "memory", static_cast<int>(ranks), static_cast<int>(chunk),
                           static_cast<int>(passes * ((n + chunk - 1) / chunk)), coupled, alone, coupled / alone));
@@ -89,7 +90,8 @@ int main(int argc, char** argv) {
   PetscCall(PetscPrintf(PETSC_COMM_WORLD,
                         "{\"bench\": \"coupling_cost_summary\", \"load\": \"%s\", \"ranks\": %d, \"rounds\": %d, "
                         "\"median_ratio\": %.4f, \"min_ratio\": %.4f, \"max_ratio\": %.4f}\n",
-                        compute ? "compute" : "memory", static_cast<int>(ranks), static_cast<int>(rounds), median, sorted.front(), sorted.back()));
+                        compute ? "compute" : "memory", static_cast<int>(ranks), static_cast<int>(rounds), median,
+                        sorted.front(), sorted.back()));
   PetscCall(PetscFinalize());
   return y[0] < 0.0;
 }
