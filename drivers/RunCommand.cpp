@@ -87,7 +87,7 @@ public:
     }
     io::RunInfo info{_scene.file, modal ? "modes" : dynamic ? "dynamic" : "static", kVersion, m.dim()};
     _writer = std::make_unique<io::OutputWriter>(_comm, out, info, io::bodyLayouts(m, _scene.output.samplesPerElement));
-    say("strand " + std::string(kVersion) + ": " + _scene.file + ": " + std::to_string(m.elements().size()) +
+    say("strand " + std::string(kVersion) + ": " + _scene.file + ": " + std::to_string(m.numElements()) +
         " elements, " + std::to_string(m.numDofs()) + " coordinates, " + std::to_string(commSize()) + " rank(s)");
     Vec X;
     PetscCallAbort(_comm, _problem.dofs().createVector(&X));

@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "strand/elements/AncfCable.hpp"
-#include "strand/elements/NodalMoment.hpp"
-#include "ElementInserter.hpp"
+#include "ElementFamily.hpp"
 #include "Multibody.hpp"
+#include "NodalMomentLoads.hpp"
 
 namespace strand::assembly {
 
@@ -23,340 +22,6 @@ void registerEvents() {
   PetscLogEventRegister("Strand:Asm:DynJac", cid, &evDynJacobian);
   done = true;
 }
-}  // namespace
-
-// Per-dimension data and loops. One object per run; element data are computed once.
-struct Assembler::Impl {
-  virtual ~Impl() = default;
-  virtual void residual(const double* x, const double* v, double loadFactor, double* r) const = 0;
-  virtual PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const = 0;
-  virtual PetscErrorCode dynamicJacobian(const double* x, const double* v, double loadFactor, double shiftV,
-                                         double shiftA, Mat J, Mat Dmat, const std::vector<char>& fixed) const = 0;
-  virtual PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const = 0;
-  virtual PetscErrorCode gyroscopic(Mat G, const std::vector<char>& fixed) const = 0;
-  virtual double strainEnergy(const double* x) const = 0;
-};
-
-namespace {
-
-template <int D>
-class CableImpl final : public Assembler::Impl {
-  using E = elements::AncfCable<D>;
-  static constexpr int N = E::kDof;
-
-public:
-  CableImpl(const model::Model& m, const model::DofMap& dofs, const std::vector<double>& q0Local)
-      : _model(m), _dofs(dofs), _q0(&q0Local), _tab(m.gaussPoints()), _massTab(4) {
-    // shape slots at the Gauss points, per body (uniform elements and slope scales)
-    for (const model::Body& b : m.bodies()) {
-      typename E::Geometry geo;
-      geo.length = b.elementLength;
-      geo.slopeScale[0] = b.slopeScale[0];
-      geo.slopeScale[1] = b.slopeScale[1];
-      _points.push_back(E::pointTable(geo, _tab));
-    }
-    // slot mass of one element, per body, and the rotation axis operators
-    for (const model::Body& b : m.bodies()) {
-      double Me[N * N];
-      E::mass(b.section, geometry(b, 0), _massTab, Me);
-      std::array<double, 16> sm{};
-      for (int a = 0; a < 4; ++a)
-        for (int c = 0; c < 4; ++c) sm[a * 4 + c] = Me[(a * D) * N + c * D];
-      _slotMass.push_back(sm);
-    }
-    for (int i = 0; i < D * D; ++i) _identity[i] = (i % (D + 1) == 0) ? 1.0 : 0.0;
-    const model::Vec3& e = m.rotation().axis;
-    if constexpr (D == 2) {
-      const double P[4] = {1, 0, 0, 1}, S[4] = {0, -1, 1, 0};  // rotation about z: in-plane
-      std::copy(P, P + 4, _projector);
-      std::copy(S, S + 4, _skew);
-    } else {
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) _projector[i * 3 + j] = (i == j ? 1.0 : 0.0) - e[i] * e[j];
-      const double S[9] = {0, -e[2], e[1], e[2], 0, -e[0], -e[1], e[0], 0};
-      std::copy(S, S + 9, _skew);
-    }
-    // consistent distributed load of one element, per body (uniform elements)
-    for (const model::Body& b : m.bodies()) {
-      std::array<double, N> f{};
-      double p[D];
-      for (int i = 0; i < D; ++i) p[i] = b.loadPerLength[i];
-      E::distributedLoad(geometry(b, 0), _tab, p, f.data());
-      _bodyLoad.push_back(f);
-    }
-    // weight of point masses, m N(eta)^T g, on the local elements that carry them
-    const auto& local = dofs.localElements();
-    for (size_t k = 0; k < local.size(); ++k) {
-      const model::ElementRef& er = m.elements()[local[k]];
-      const model::Body& b = m.bodies()[er.body];
-      for (const model::PointMass& pm : b.pointMasses) {
-        if (pm.element != er.index) continue;
-        const auto sl = E::slots(geometry(b, er.index), math::hermite(pm.eta));
-        std::array<double, N> f{};
-        for (int a = 0; a < 4; ++a)
-          for (int i = 0; i < D; ++i) f[a * D + i] = pm.mass * sl.N[a] * m.gravity()[i];
-        _pointMassLoad.push_back({static_cast<int>(k), f});
-      }
-    }
-    // nodal moments on slope blocks this rank owns
-    for (const model::NodalMomentLoad& ml : m.nodalMoments()) {
-      const PetscInt g = dofs.globalBlock()[ml.slopeBlock];
-      if (g >= dofs.ownedBegin() && g < dofs.ownedEnd()) _moments.push_back({g - dofs.ownedBegin(), ml.moment});
-    }
-  }
-
-  typename E::Geometry geometry(const model::Body& b, int e) const {
-    typename E::Geometry geo;
-    geo.length = b.elementLength;
-    geo.slopeScale[0] = b.slopeScale[e];
-    geo.slopeScale[1] = b.slopeScale[e + 1];
-    if (!b.kappa0.empty()) geo.kappa0 = &b.kappa0[e * _tab.size()];
-    geo.points = &_points[&b - _model.bodies().data()];
-    geo.pointsOf = &_tab;
-    return geo;
-  }
-
-  // Element reference coordinates q0 and displacements u from ghosted-local arrays.
-  void gatherElement(int k, const double* x, double* u, double* q0) const {
-    const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < D; ++i) {
-        u[a * D + i] = x[lb[a] * D + i];
-        q0[a * D + i] = (*_q0)[lb[a] * D + i];
-      }
-  }
-
-  // Element velocities from a ghosted-local array.
-  void gatherVelocity(int k, const double* v, double* ve) const {
-    const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < D; ++i) ve[a * D + i] = v[lb[a] * D + i];
-  }
-
-  void residual(const double* x, const double* v, double loadFactor, double* r) const override {
-    const double omega2 = _model.rotation().omega * _model.rotation().omega;
-    const auto& els = _model.elements();
-    const auto& local = _dofs.localElements();
-    double u[N], q0[N], f[N], ve[N];
-    for (size_t k = 0; k < local.size(); ++k) {
-      const model::ElementRef& er = els[local[k]];
-      const model::Body& b = _model.bodies()[er.body];
-      gatherElement(static_cast<int>(k), x, u, q0);
-      if (v) gatherVelocity(static_cast<int>(k), v, ve);
-      E::force(b.section, geometry(b, er.index), _tab, q0, u, v ? ve : static_cast<const double*>(nullptr), f);
-      if (omega2 != 0.0) addCentrifugalForce(er, b, q0, u, loadFactor * omega2, f);
-      const auto& fe = _bodyLoad[er.body];
-      const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
-      for (int a = 0; a < 4; ++a)
-        for (int i = 0; i < D; ++i) r[lb[a] * D + i] += f[a * D + i] - loadFactor * fe[a * D + i];
-    }
-    for (const auto& pl : _pointMassLoad) {
-      const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * pl.localElement];
-      for (int a = 0; a < 4; ++a)
-        for (int i = 0; i < D; ++i) r[lb[a] * D + i] -= loadFactor * pl.force[a * D + i];
-    }
-    for (const auto& ml : _moments) {
-      double Q[D], e[D];
-      slopeOf(ml.localBlock, x, e);
-      elements::NodalMoment<D>::force(ml.moment, e, Q, nullptr);
-      for (int i = 0; i < D; ++i) r[ml.localBlock * D + i] -= loadFactor * Q[i];
-    }
-  }
-
-  PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const override {
-    PetscFunctionBeginUser;
-    const double omega2 = _model.rotation().omega * _model.rotation().omega;
-    const auto& els = _model.elements();
-    const auto& local = _dofs.localElements();
-    double u[N], q0[N], K[N * N];
-    ElementInserter toJ;
-    PetscCall(ElementInserter::create(J, _dofs, &toJ));
-    for (size_t k = 0; k < local.size(); ++k) {
-      const model::ElementRef& er = els[local[k]];
-      const model::Body& b = _model.bodies()[er.body];
-      gatherElement(static_cast<int>(k), x, u, q0);
-      E::tangent(b.section, geometry(b, er.index), _tab, q0, u, nullptr, nullptr, K, nullptr);
-      if (omega2 != 0.0) addMassBlocks(er, b, -loadFactor * omega2, _projector, K);  // softening -Omega^2 M_P
-      maskFixed(static_cast<int>(k), fixed, K);
-      PetscCall(toJ.add(static_cast<int>(k), K));
-    }
-    PetscCall(momentTangents(x, loadFactor, J, fixed));
-    PetscFunctionReturn(0);
-  }
-
-  // J += -loadFactor dQ/de of the nodal moments (they follow the slope).
-  PetscErrorCode momentTangents(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const {
-    PetscFunctionBeginUser;
-    for (const auto& ml : _moments) {
-      double Q[D], dQ[D * D], e[D];
-      slopeOf(ml.localBlock, x, e);
-      elements::NodalMoment<D>::force(ml.moment, e, Q, dQ);
-      for (int i = 0; i < D; ++i)
-        for (int j = 0; j < D; ++j) {
-          const PetscInt li = ml.localBlock * D + i, lj = ml.localBlock * D + j;
-          dQ[i * D + j] = (fixed[li] || fixed[lj]) ? 0.0 : -loadFactor * dQ[i * D + j];
-        }
-      const PetscInt g = ml.localBlock + _dofs.ownedBegin();
-      PetscCall(MatSetValuesBlocked(J, 1, &g, 1, &g, dQ, ADD_VALUES));
-    }
-    PetscFunctionReturn(0);
-  }
-
-  // Dynamic tangent K + shiftV D + shiftA M (K = df_int/du, D = df_int/dv, consistent mass M):
-  // one pass over the elements for the Newton matrix of an implicit integrator.
-  PetscErrorCode dynamicJacobian(const double* x, const double* v, double loadFactor, double shiftV, double shiftA,
-                                 Mat J, Mat Dmat, const std::vector<char>& fixed) const override {
-    PetscFunctionBeginUser;
-    const auto& els = _model.elements();
-    const auto& local = _dofs.localElements();
-    double u[N], q0[N], ve[N], K[N * N], Dm[N * N];
-    ElementInserter toJ, toD;
-    PetscCall(ElementInserter::create(J, _dofs, &toJ));
-    if (Dmat) PetscCall(ElementInserter::create(Dmat, _dofs, &toD));
-    for (size_t k = 0; k < local.size(); ++k) {
-      const model::ElementRef& er = els[local[k]];
-      const model::Body& b = _model.bodies()[er.body];
-      gatherElement(static_cast<int>(k), x, u, q0);
-      if (v) gatherVelocity(static_cast<int>(k), v, ve);
-      const bool damped = v && (b.section.dampAxial != 0.0 || b.section.dampBending != 0.0);
-      E::tangent(b.section, geometry(b, er.index), _tab, q0, u, v ? ve : nullptr, nullptr, K, damped ? Dm : nullptr);
-      if (damped) {
-        for (int i = 0; i < N * N; ++i) K[i] += shiftV * Dm[i];
-        if (Dmat) {
-          maskFixed(static_cast<int>(k), fixed, Dm);
-          PetscCall(toD.add(static_cast<int>(k), Dm));
-        }
-      }
-      addMassBlocks(er, b, shiftA, _identity, K);
-      maskFixed(static_cast<int>(k), fixed, K);
-      PetscCall(toJ.add(static_cast<int>(k), K));
-    }
-    PetscCall(momentTangents(x, loadFactor, J, fixed));
-    PetscFunctionReturn(0);
-  }
-
-  // Consistent mass with point masses: blocks m_ab I_D.
-  PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const override {
-    return assembleMassBlocks(M, 1.0, _identity, fixed);
-  }
-
-  // Coriolis (gyroscopic) matrix of the rotating frame, G = 2 Omega int rho A N^T [e]x N dx (plus
-  // point masses): the Coriolis force 2 m Omega e x v on the left-hand side; G is skew-symmetric.
-  PetscErrorCode gyroscopic(Mat G, const std::vector<char>& fixed) const override {
-    return assembleMassBlocks(G, 2.0 * _model.rotation().omega, _skew, fixed);
-  }
-
-  double strainEnergy(const double* x) const override {
-    const auto& els = _model.elements();
-    const auto& local = _dofs.localElements();
-    double u[N], q0[N], U = 0.0;
-    for (size_t k = 0; k < local.size(); ++k) {
-      const model::ElementRef& er = els[local[k]];
-      const model::Body& b = _model.bodies()[er.body];
-      gatherElement(static_cast<int>(k), x, u, q0);
-      U += E::strainEnergy(b.section, geometry(b, er.index), _tab, q0, u);
-    }
-    return U;
-  }
-
-private:
-  // Nodal-slot mass m_ab = rho A int N_a N_b dx + sum m N_a N_b over the element's point masses:
-  // the element mass matrix is m (x) I_D (AncfCable::mass).
-  void slotMass(const model::ElementRef& er, const model::Body& b, double m[4][4]) const {
-    const auto& base = _slotMass[er.body];
-    for (int a = 0; a < 4; ++a)
-      for (int c = 0; c < 4; ++c) m[a][c] = base[a * 4 + c];
-    for (const model::PointMass& pm : b.pointMasses) {
-      if (pm.element != er.index) continue;
-      const auto sl = E::slots(geometry(b, er.index), math::hermite(pm.eta));
-      for (int a = 0; a < 4; ++a)
-        for (int c = 0; c < 4; ++c) m[a][c] += pm.mass * sl.N[a] * sl.N[c];
-    }
-  }
-
-  // Assemble s m (x) X over the local elements (supported rows and columns zero).
-  PetscErrorCode assembleMassBlocks(Mat A, double s, const double* X, const std::vector<char>& fixed) const {
-    PetscFunctionBeginUser;
-    const auto& els = _model.elements();
-    const auto& local = _dofs.localElements();
-    double Ae[N * N];
-    ElementInserter toA;
-    PetscCall(ElementInserter::create(A, _dofs, &toA));
-    for (size_t k = 0; k < local.size(); ++k) {
-      const model::ElementRef& er = els[local[k]];
-      for (double& a : Ae) a = 0.0;
-      addMassBlocks(er, _model.bodies()[er.body], s, X, Ae);
-      maskFixed(static_cast<int>(k), fixed, Ae);
-      PetscCall(toA.add(static_cast<int>(k), Ae));
-    }
-    PetscFunctionReturn(0);
-  }
-
-  // A += s m (x) X for a D x D matrix X (row-major): blocks s m_ab X.
-  void addMassBlocks(const model::ElementRef& er, const model::Body& b, double s, const double* X, double* A) const {
-    double m[4][4];
-    slotMass(er, b, m);
-    for (int a = 0; a < 4; ++a)
-      for (int c = 0; c < 4; ++c)
-        for (int i = 0; i < D; ++i)
-          for (int j = 0; j < D; ++j) A[(a * D + i) * N + c * D + j] += s * m[a][c] * X[i * D + j];
-  }
-
-  // Centrifugal force on the left-hand side, f -= Omega^2 (m (x) P) (q - c~): the centrifugal
-  // load Omega^2 int rho A N^T P (r - c) dx, with the axis point c interpolated exactly by the
-  // position slots (c~: c at positions, 0 at slopes). Seed 003 Eq. 49: lambda^2 (M q + delta S_x).
-  void addCentrifugalForce(const model::ElementRef& er, const model::Body& b, const double* q0, const double* u,
-                           double omega2, double* f) const {
-    double m[4][4];
-    slotMass(er, b, m);
-    double w[N];
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < D; ++i) w[a * D + i] = q0[a * D + i] + u[a * D + i] - (a % 2 == 0 ? _model.rotation().center[i] : 0.0);
-    for (int a = 0; a < 4; ++a)
-      for (int c = 0; c < 4; ++c)
-        for (int i = 0; i < D; ++i) {
-          double pw = 0.0;
-          for (int j = 0; j < D; ++j) pw += _projector[i * D + j] * w[c * D + j];
-          f[a * D + i] -= omega2 * m[a][c] * pw;
-        }
-  }
-
-  void slopeOf(PetscInt localBlock, const double* x, double* e) const {
-    for (int i = 0; i < D; ++i) e[i] = (*_q0)[localBlock * D + i] + x[localBlock * D + i];
-  }
-
-  // Zero the rows and columns of supported DOFs (their unit diagonal is added once, elsewhere).
-  void maskFixed(int k, const std::vector<char>& fixed, double* A) const {
-    const PetscInt* lb = &_dofs.elementLocalBlocks()[4 * k];
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < D; ++i)
-        if (fixed[lb[a] * D + i]) {
-          const int r = a * D + i;
-          for (int c = 0; c < N; ++c) A[r * N + c] = A[c * N + r] = 0.0;
-        }
-  }
-
-  struct OwnedMoment {
-    PetscInt localBlock;
-    model::Vec3 moment;
-  };
-  const model::Model& _model;
-  const model::DofMap& _dofs;
-  const std::vector<double>* _q0;  // reference coordinates, ghosted-local numbering
-  elements::CableShapeTable _tab, _massTab;
-  std::vector<std::array<double, N>> _bodyLoad;
-  std::vector<elements::CablePointTable> _points;  // per body, at the Gauss points of _tab
-  std::vector<std::array<double, 16>> _slotMass;       // per body: m_ab of one element (no point masses)
-  double _identity[D * D];
-  double _projector[D * D], _skew[D * D];              // P = I - e e^T and [e]x of the rotation axis e
-  std::vector<OwnedMoment> _moments;
-  struct PointMassLoad {
-    int localElement;
-    std::array<double, N> force;
-  };
-  std::vector<PointMassLoad> _pointMassLoad;
-};
-
 }  // namespace
 
 Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _model(model), _dofs(dofs) {
@@ -414,10 +79,9 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
     const PetscInt lb = dofs.localBlock(dofs.globalBlock()[dof / bs]);
     if (lb >= 0 && lb < dofs.ownedBlocks()) _movedCoordinates.push_back({lb * bs + dof % bs, k});
   }
-  if (model.dim() == 2)
-    _impl = std::make_unique<CableImpl<2>>(model, dofs, _q0Local);
-  else
-    _impl = std::make_unique<CableImpl<3>>(model, dofs, _q0Local);
+  for (const model::DofMap::LocalGroup& local : dofs.localGroups())
+    _families.push_back(makeElementFamily(model, dofs, local, _q0Local));
+  _moments = std::make_unique<NodalMomentLoads>(model, dofs, _q0Local);
   _multibody = std::make_unique<Multibody>(model, dofs, _q0Local);
 }
 
@@ -469,7 +133,7 @@ PetscErrorCode Assembler::saddleMatrix(Vec X, Mat S) {
   LocalRead x;
   PetscCall(beginLocal(X, _xWork, &x));
   PetscCall(MatZeroEntries(S));
-  PetscCall(_impl->mass(S, _fixedLocal));
+  for (const auto& f : _families) PetscCall(f->mass(S, _fixedLocal));
   PetscCall(_multibody->mass(S, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, 1.0, 0.0, 0.0, S, _fixedLocal, true));
   PetscCall(endLocal(&x));
@@ -626,7 +290,8 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
   PetscCall(beginLocal(X, _xWork, &x));
   if (V) PetscCall(beginLocal(V, _vWork, &v));
   PetscCall(beginLocalSum(R, {X, V}, &r));
-  PetscCallCXX(_impl->residual(x.a, v.a, loadFactor, r.a));
+  for (const auto& f : _families) PetscCallCXX(f->residual(x.a, v.a, loadFactor, r.a));
+  _moments->residual(x.a, loadFactor, r.a);
   PetscCallCXX(_multibody->residual(x.a, _constraintScale, loadFactor, r.a));
   PetscCall(endLocalSum(&r));
   // owned rows: nodal forces and supports
@@ -659,7 +324,8 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   LocalRead x;
   PetscCall(beginLocal(X, _xWork, &x));
   PetscCall(MatZeroEntries(J));
-  PetscCall(_impl->jacobian(x.a, loadFactor, J, _fixedLocal));
+  for (const auto& f : _families) PetscCall(f->jacobian(x.a, loadFactor, J, _fixedLocal));
+  PetscCall(_moments->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, _constraintScale, 0.0, loadFactor, J, _fixedLocal));
   PetscCall(endLocal(&x));
   PetscCall(assembleWithSupportDiagonal(J));
@@ -676,7 +342,8 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal s
   PetscCall(MatZeroEntries(J));
   if (D) PetscCall(MatZeroEntries(D));
   const double loadFactor = _model.loadFactor(t);
-  PetscCall(_impl->dynamicJacobian(x.a, v.a, loadFactor, shiftV, shiftA, J, D, _fixedLocal));
+  for (const auto& f : _families) PetscCall(f->dynamicJacobian(x.a, v.a, shiftV, shiftA, J, D, _fixedLocal));
+  PetscCall(_moments->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, _constraintScale, shiftA, loadFactor, J, _fixedLocal));
   PetscCall(endLocal(&x));
   if (V) PetscCall(endLocal(&v));
@@ -708,7 +375,7 @@ PetscErrorCode Assembler::massMatrix(Mat M, bool maskSupports) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evMass, 0, 0, 0, 0));
   PetscCall(MatZeroEntries(M));
-  PetscCall(_impl->mass(M, maskSupports ? _fixedLocal : _noneFixed));
+  for (const auto& f : _families) PetscCall(f->mass(M, maskSupports ? _fixedLocal : _noneFixed));
   PetscCall(_multibody->mass(M, maskSupports ? _fixedLocal : _noneFixed));
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
@@ -760,7 +427,7 @@ PetscErrorCode Assembler::zeroSupportedRows(Vec R) const {
 PetscErrorCode Assembler::gyroscopicMatrix(Mat G) {
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(G));
-  PetscCall(_impl->gyroscopic(G, _fixedLocal));
+  for (const auto& f : _families) PetscCall(f->gyroscopic(G, _fixedLocal));
   PetscCall(MatAssemblyBegin(G, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(G, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
@@ -770,7 +437,8 @@ PetscErrorCode Assembler::strainEnergy(Vec X, PetscReal* U) {
   PetscFunctionBeginUser;
   LocalRead x;
   PetscCall(beginLocal(X, _xWork, &x));
-  double local = _impl->strainEnergy(x.a);
+  double local = 0.0;
+  for (const auto& f : _families) local += f->strainEnergy(x.a);
   PetscCall(endLocal(&x));
   PetscCallMPI(MPI_Allreduce(&local, U, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
   PetscFunctionReturn(0);

@@ -1,7 +1,5 @@
 #include "strand/io/Frames.hpp"
 
-#include "strand/math/Hermite.hpp"
-
 namespace strand::io {
 
 std::vector<BodyLayout> bodyLayouts(const model::Model& model, int samplesPerElement) {
@@ -9,10 +7,10 @@ std::vector<BodyLayout> bodyLayouts(const model::Model& model, int samplesPerEle
   for (const model::Body& b : model.bodies()) {
     BodyLayout l;
     l.name = b.name;
-    l.elementType = model.dim() == 2 ? "AncfCable2d" : "AncfCable3d";
+    l.elementType = b.info().name;
     l.elements = b.elements;
     l.nodes = b.elements + 1;
-    l.coordsPerNode = 2 * model.dim();
+    l.coordsPerNode = b.blocksPerNode * model.dim();
     l.pointsPerBody = b.elements * samplesPerElement + 1;
     out.push_back(l);
   }
@@ -22,13 +20,14 @@ std::vector<BodyLayout> bodyLayouts(const model::Model& model, int samplesPerEle
 model::Vec3 positionOnBody(const model::Model& model, const std::vector<double>& q, int body, int e, double eta) {
   const model::Body& b = model.bodies()[body];
   const int d = model.dim();
-  const math::HermiteValues h = math::hermite(eta);
-  const double l = b.elementLength;
-  const int blocks[4] = {b.posBlock[e], b.slopeBlock[e], b.posBlock[e + 1], b.slopeBlock[e + 1]};
-  const double coef[4] = {h.s[0], h.s[1] * l / b.slopeScale[e], h.s[2], h.s[3] * l / b.slopeScale[e + 1]};
+  const int perElement = 2 * b.blocksPerNode;
+  double w[elements::kMaxBlocksPerElement];  // the kind's centerline interpolation weights, one per element slot
+  b.info().interpolation(b.discretization, eta, w);
   model::Vec3 r{0, 0, 0};
-  for (int a = 0; a < 4; ++a)
-    for (int i = 0; i < d; ++i) r[i] += coef[a] * q[blocks[a] * d + i];
+  for (int a = 0; a < perElement; ++a) {
+    const int blk = b.nodeBlocks[e * b.blocksPerNode + a];
+    for (int i = 0; i < d; ++i) r[i] += w[a] * q[blk * d + i];
+  }
   return r;
 }
 
@@ -46,11 +45,12 @@ std::vector<BodyFrame> makeFrames(const model::Model& model, const std::vector<d
       }
     const model::Vec3 end = positionOnBody(model, q, bi, b.elements - 1, 1.0);
     f.centerline.insert(f.centerline.end(), end.begin(), end.end());
-    // nodal coordinates: position and the unscaled slope dr/dx
-    for (int n = 0; n <= b.elements; ++n) {
-      for (int i = 0; i < d; ++i) f.coordinates.push_back(q[b.posBlock[n] * d + i]);
-      for (int i = 0; i < d; ++i) f.coordinates.push_back(q[b.slopeBlock[n] * d + i] / b.slopeScale[n]);
-    }
+    // nodal coordinates, block by block in the kind's layout; gradients unscaled (dr/dx, dr/dy)
+    for (int n = 0; n <= b.elements; ++n)
+      for (int k = 0; k < b.blocksPerNode; ++k) {
+        const int blk = b.block(n, k);
+        for (int i = 0; i < d; ++i) f.coordinates.push_back(q[blk * d + i] / b.blockScale(k));
+      }
     frames.push_back(std::move(f));
   }
   return frames;

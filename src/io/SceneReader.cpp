@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "strand/core/Error.hpp"
+#include "strand/elements/ElementRegistry.hpp"
 
 namespace strand::io {
 namespace {
@@ -394,30 +395,6 @@ const HubBeamKey kHubBeamBeamKeys[] = {{"length", &model::HubBeamDesc::length},
 const char* const kNotInHubBeamScenes[] = {"bodies", "rigid_bodies", "joints", "supports", "junctions", "loads",
                                            "rotation", "sweep", "modes", "static", "discretization"};
 
-struct ElementTypeInfo {
-  const char* name;
-  model::ElementType value;
-  int dimension;  // the scene dimension the element needs
-};
-const ElementTypeInfo kElementTypes[] = {{"AncfCable2d", model::ElementType::AncfCable2d, 2},
-                                         {"AncfCable3d", model::ElementType::AncfCable3d, 3}};
-
-// Section keys and where they go: the required ones must be positive, the optional ones (damping)
-// must not be negative.
-struct SectionKey {
-  const char* name;
-  double BodyDesc::*field;
-  bool required;
-};
-const SectionKey kSectionKeys[] = {
-    {"E", &BodyDesc::E, true},
-    {"A", &BodyDesc::A, true},
-    {"I", &BodyDesc::I, true},
-    {"rho", &BodyDesc::rho, true},
-    {"damping_axial", &BodyDesc::dampAxial, false},
-    {"damping_bending", &BodyDesc::dampBending, false},
-};
-
 // ------------------------------------------------------------------------------------------------
 // Geometry
 
@@ -560,16 +537,53 @@ double bodyLength(const GeometryDesc& g) {
 // ------------------------------------------------------------------------------------------------
 // Bodies
 
-void readSection(const Field& f, BodyDesc& body) {
+// The kind's section keys (numbers, in their ranges) and formulation options (a value of each
+// option's list; the first is the default).
+void readSection(const Field& f, const elements::KindInfo& kind, BodyDesc& body) {
   std::vector<std::string> keys;
-  for (const SectionKey& k : kSectionKeys) keys.emplace_back(k.name);
+  for (int k = 0; k < kind.sectionKeyCount; ++k) keys.emplace_back(kind.sectionKeys[k].name);
   f.expectMap(keys);
-  for (const SectionKey& k : kSectionKeys) {
-    const Field value = f.child(k.name);
-    if (k.required)
-      body.*k.field = requirePositive(value);
-    else if (value.present())
-      body.*k.field = requireNonNegative(value);
+  for (int k = 0; k < kind.sectionKeyCount; ++k) {
+    const elements::SectionKey& key = kind.sectionKeys[k];
+    const Field value = f.child(key.name);
+    if (!value.present() && !key.required) {
+      body.section.set(key.name, key.fallback);
+      continue;
+    }
+    if (key.required && !key.lowerClosed && key.lower == 0.0 && key.upper == elements::kNoLimit) {
+      body.section.set(key.name, requirePositive(value));
+      continue;
+    }
+    if (!key.required && key.lowerClosed && key.lower == 0.0 && key.upper == elements::kNoLimit) {
+      body.section.set(key.name, requireNonNegative(value));
+      continue;
+    }
+    const double v = value.number();
+    const bool above = key.lowerClosed ? v >= key.lower : v > key.lower;
+    if (!above || !(v < key.upper))
+      value.fail("must be in " + std::string(key.lowerClosed ? "[" : "(") + fmt(key.lower) + ", " + fmt(key.upper) +
+                 ") (got " + fmt(v) + ")");
+    body.section.set(key.name, v);
+  }
+}
+
+void readFormulation(const Field& f, const elements::KindInfo& kind, BodyDesc& body) {
+  for (int k = 0; k < kind.optionCount; ++k) body.section.options[kind.options[k].name] = kind.options[k].values[0];
+  if (!f.present()) return;
+  std::vector<std::string> keys;
+  for (int k = 0; k < kind.optionCount; ++k) keys.emplace_back(kind.options[k].name);
+  if (keys.empty()) f.fail(std::string(kind.name) + " has no formulation options");
+  f.expectMap(keys);
+  for (int k = 0; k < kind.optionCount; ++k) {
+    const elements::OptionKey& option = kind.options[k];
+    const Field value = f.child(option.name);
+    if (!value.present()) continue;
+    const std::string text = value.text();
+    std::vector<std::string> allowed;
+    for (int v = 0; v < elements::OptionKey::kMaxValues && option.values[v]; ++v) allowed.emplace_back(option.values[v]);
+    if (std::find(allowed.begin(), allowed.end(), text) == allowed.end())
+      value.fail("unknown " + std::string(option.name) + " '" + text + "'; allowed: " + join(allowed));
+    body.section.options[option.name] = text;
   }
 }
 
@@ -595,13 +609,15 @@ void readPointMasses(const Field& f, BodyDesc& body) {
     }
     const Field mass = item.child("mass"), ratio = item.child("mass_ratio");
     if (mass.present() == ratio.present()) item.fail("give exactly one of 'mass' [kg] and 'mass_ratio' (mass / (rho A L))");
-    pm.mass = mass.present() ? requirePositive(mass) : requirePositive(ratio) * body.rho * body.A * length;
+    const double rhoA = elements::kindInfo(body.kind).properties(body.section).rhoA;
+    pm.mass = mass.present() ? requirePositive(mass) : requirePositive(ratio) * rhoA * length;
     body.pointMasses.push_back(pm);
   }
 }
 
 BodyDesc readBody(const Field& f, const Context& ctx) {
-  f.expectMap({"name", "element", "elements", "geometry", "section", "stress_free", "point_masses", "initial_velocity"});
+  f.expectMap({"name", "element", "elements", "geometry", "section", "formulation", "stress_free", "point_masses",
+               "initial_velocity"});
   BodyDesc body;
   body.mark = f.mark();
   const Field name = f.child("name");
@@ -609,19 +625,23 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
   if (body.name.empty()) name.fail("must not be empty");
 
   const Field element = f.child("element");
-  const ElementTypeInfo& type = pick(element, "element type", kElementTypes);
-  if (type.dimension != ctx.dim)
-    element.fail(std::string(type.name) + " needs dimension: " + std::to_string(type.dimension) +
+  const std::string kindName = element.text();
+  body.kind = elements::findKind(kindName);
+  if (body.kind < 0) element.fail("unknown element type '" + kindName + "'; allowed: " + join(elements::kindNames()));
+  const elements::KindInfo& kind = elements::kindInfo(body.kind);
+  if (kind.dim != ctx.dim)
+    element.fail(std::string(kind.name) + " needs dimension: " + std::to_string(kind.dim) +
                  " (dimension mismatch: the scene has dimension: " + std::to_string(ctx.dim) + ")");
-  body.type = type.value;
   body.elements = requireIntAtLeast(f.child("elements"), 1);
   body.geometry = readGeometry(f.child("geometry"), ctx);
-  readSection(f.child("section"), body);
+  readSection(f.child("section"), kind, body);
+  readFormulation(f.child("formulation"), kind, body);
 
   if (const Field stressFree = f.child("stress_free"); stressFree.present()) {
     body.stressFreeInitial = pick(stressFree, "stress_free", kStressFree).value;
-    if (body.stressFreeInitial && ctx.dim != 2)
-      stressFree.fail("'initial' is only allowed when dimension is 2");
+    if (body.stressFreeInitial && !kind.stressFreeInitial)
+      stressFree.fail(std::string("'initial' is not available for ") + kind.name +
+                      (ctx.dim != 2 ? " ('initial' is only allowed when dimension is 2)" : " (its stress-free shape is straight)"));
   }
   if (const Field masses = f.child("point_masses"); masses.present()) readPointMasses(masses, body);
   if (const Field v = f.child("initial_velocity"); v.present()) {
@@ -856,7 +876,8 @@ private:
   double referenceTime() const {
     const BodyDesc& b = scene_.bodies.front();
     const double L = bodyLength(b.geometry);
-    return std::sqrt(b.rho * b.A * L * L * L * L / (b.E * b.I));
+    const elements::BeamProperties p = elements::kindInfo(b.kind).properties(b.section);
+    return std::sqrt(p.rhoA * L * L * L * L / p.EI);
   }
 
   // rotation: omega [rad/s] or gamma (= omega T*); axis (3D); center, or hub_radius [m] /
@@ -1114,12 +1135,14 @@ private:
   }
 
   void readSupports(const Field& f) {
-    const int maxDof = 2 * ctx_.dim - 1;
     for (const Field& item : f.items()) {
       item.expectMap({"body", "node", "type", "dofs", "hub"});
       model::SupportDesc s;
       s.mark = item.mark();
       s.at = readNodeRef(item);
+      int maxDof = 2 * ctx_.dim - 1;  // a node's coordinates, block by block in its kind's layout
+      for (const BodyDesc& b : scene_.bodies)
+        if (b.name == s.at.body) maxDof = elements::kindInfo(b.kind).blocksPerNode * ctx_.dim - 1;
       s.type = pick(item.child("type"), "support type", kSupportTypes).value;
       const Field dofs = item.child("dofs");
       if (s.type != model::SupportType::Fixed) {

@@ -8,16 +8,19 @@
 namespace strand::model {
 namespace {
 
-// The block groups that couple DOFs, as CSR: every element's four blocks, then every coupling
-// (rigid body, joint) of the model.
+// The block groups that couple DOFs, as CSR: every element's blocks (group by group), then every
+// coupling (rigid body, joint) of the model.
 void blockGroups(const Model& model, std::vector<PetscInt>& ptr, std::vector<int>& blk) {
   ptr.assign(1, 0);
   blk.clear();
-  blk.reserve(4 * model.elements().size());
-  for (const ElementRef& e : model.elements()) {
-    blk.insert(blk.end(), e.blocks.begin(), e.blocks.end());
-    ptr.push_back(static_cast<PetscInt>(blk.size()));
-  }
+  size_t total = 0;
+  for (const ElementGroup& g : model.groups()) total += g.blocks.size();
+  blk.reserve(total);
+  for (const ElementGroup& g : model.groups())
+    for (int e = 0; e < g.size(); ++e) {
+      blk.insert(blk.end(), g.blocksOf(e), g.blocksOf(e) + g.blocksPerElement);
+      ptr.push_back(static_cast<PetscInt>(blk.size()));
+    }
   for (const Coupling& c : model.couplings()) {
     blk.insert(blk.end(), c.blocks.begin(), c.blocks.end());
     ptr.push_back(static_cast<PetscInt>(blk.size()));
@@ -140,17 +143,24 @@ DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()
     if (interfaceIsPrefixOnly(members[p], onInterface)) std::reverse(members[p].begin(), members[p].end());
     for (size_t i = 0; i < members[p].size(); ++i) _global[members[p][i]] = offset[p] + static_cast<PetscInt>(i);
   }
-  // 3. local elements: those whose first block this rank owns; their ghosts
-  const auto& elements = model.elements();
-  for (int e = 0; e < static_cast<int>(elements.size()); ++e) {
-    const PetscInt g = _global[elements[e].blocks[0]];
-    if (g >= _begin && g < _end) _localElements.push_back(e);
-  }
-  for (int e : _localElements)
-    for (int b : elements[e].blocks) {
-      const PetscInt g = _global[b];
-      if (g < _begin || g >= _end) _ghosts.push_back(g);
+  // 3. local elements: those whose first block this rank owns, group by group; their ghosts
+  const auto& groups = model.groups();
+  for (int gi = 0; gi < static_cast<int>(groups.size()); ++gi) {
+    const ElementGroup& group = groups[gi];
+    LocalGroup local;
+    local.group = gi;
+    local.stride = group.blocksPerElement;
+    for (int e = 0; e < group.size(); ++e) {
+      const PetscInt g = _global[group.blocksOf(e)[0]];
+      if (g >= _begin && g < _end) local.elements.push_back(e);
     }
+    for (int e : local.elements)
+      for (int k = 0; k < group.blocksPerElement; ++k) {
+        const PetscInt g = _global[group.blocksOf(e)[k]];
+        if (g < _begin || g >= _end) _ghosts.push_back(g);
+      }
+    _localGroups.push_back(std::move(local));
+  }
   // couplings (rigid bodies, joints): those whose first block this rank owns
   const auto& couplings = model.couplings();
   for (int c = 0; c < static_cast<int>(couplings.size()); ++c) {
@@ -162,11 +172,15 @@ DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()
   }
   std::sort(_ghosts.begin(), _ghosts.end());
   _ghosts.erase(std::unique(_ghosts.begin(), _ghosts.end()), _ghosts.end());
-  for (int e : _localElements)
-    for (int b : elements[e].blocks) {
-      _elGlobal.push_back(_global[b]);
-      _elLocal.push_back(localBlock(_global[b]));
-    }
+  for (LocalGroup& local : _localGroups) {
+    const ElementGroup& group = groups[local.group];
+    for (int e : local.elements)
+      for (int k = 0; k < group.blocksPerElement; ++k) {
+        const PetscInt g = _global[group.blocksOf(e)[k]];
+        local.globalBlocks.push_back(g);
+        local.localBlocks.push_back(localBlock(g));
+      }
+  }
   _cplOffset.assign(1, 0);
   for (int c : _localCouplings) {
     for (int b : couplings[c].blocks) {

@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 #include "strand/core/Error.hpp"
-#include "strand/elements/AncfCable.hpp"
 #include "strand/model/InitialGeometry.hpp"
 
 namespace strand::model {
@@ -14,31 +14,6 @@ int nodeIndex(const NodeRef& ref, const Body& b) {
   const long n = ref.node < 0 ? b.elements : ref.node;
   if (n > b.elements) throw InputError(ref.mark.where() + ": node " + std::to_string(n) + " out of range 0.." + std::to_string(b.elements));
   return static_cast<int>(n);
-}
-
-// Reference curvature of the interpolated initial shape at each Gauss point, so that the initial
-// shape is exactly stress free ("stress_free: initial", 2D only; the axial reference is always the
-// initial shape).
-void referenceStrains(Body& body, const std::vector<double>& q0, int gaussPoints) {
-  using E = elements::AncfCable2d;
-  const elements::CableShapeTable tab(gaussPoints);
-  body.kappa0.assign(body.elements * gaussPoints, 0.0);
-  for (int e = 0; e < body.elements; ++e) {
-    E::Geometry geo;
-    geo.length = body.elementLength;
-    geo.slopeScale[0] = body.slopeScale[e];
-    geo.slopeScale[1] = body.slopeScale[e + 1];
-    double q[E::kDof];
-    const int blocks[4] = {body.posBlock[e], body.slopeBlock[e], body.posBlock[e + 1], body.slopeBlock[e + 1]};
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 2; ++i) q[2 * a + i] = q0[2 * blocks[a] + i];
-    for (int g = 0; g < gaussPoints; ++g) {
-      double G[E::kG], kap[1];
-      E::gather(E::slots(geo, tab.at[g]), q, G);
-      E::curvature(G, kap);
-      body.kappa0[e * gaussPoints + g] = kap[0];
-    }
-  }
 }
 
 // Values of the constraint equations `eqs` over `blocks` at the coordinates q (model numbering).
@@ -76,55 +51,92 @@ std::array<double, 9> rotationMatrix(const Vec3& axis, double angle) {
 
 }  // namespace
 
-Model::Model(const SceneDescription& scene)
-    : _dim(scene.dimension), _gaussPoints(scene.discretization.gaussPoints), _gravity(scene.loads.gravity),
-      _rotation(scene.rotation) {
-  std::map<std::string, int> bodyIndex;
+// The scene and the name tables while the model is built.
+struct Model::Build {
+  const SceneDescription& scene;
+  std::map<std::string, int> bodyIndex, rigidIndex;
   std::vector<InitialGeometry> curves;
-  std::vector<double> q0;
-  std::vector<CurvePoint> nodePoints;
-  // 1. bodies and their blocks
+
+  Body& body(std::vector<Body>& bodies, const std::string& name, const SourceMark& mark) const {
+    auto it = bodyIndex.find(name);
+    if (it == bodyIndex.end()) throw InputError(mark.where() + ": no body named '" + name + "'");
+    return bodies[it->second];
+  }
+};
+
+Model::Model(const SceneDescription& scene) : _dim(scene.dimension), _gravity(scene.loads.gravity), _rotation(scene.rotation) {
+  Build b{scene, {}, {}, {}};
+  addBodies(b);                     // 1. bodies and their node blocks
+  mergeJunctions(b);                // 2. junction nodes share one position block
+  addRigidBodiesAndMultipliers(b);  //    rigid bodies' blocks, joints' multiplier blocks
+  placeInitialState(b);             // 3. q0, reference values, element groups
+  addSupports(b);                   // 4. supports, multipliers, prescribed motion
+  addLoads(b);                      // 5. loads
+  addInitialVelocities(b);
+  addJointEquations(b);             // 6. joint equations, checked at the initial state
+  addCouplings();                   // 7. couplings: rigid bodies and joints
+}
+
+int Model::numElements() const {
+  int n = 0;
+  for (const ElementGroup& g : _groups) n += g.size();
+  return n;
+}
+
+bool Model::velocityDependent() const {
+  for (const Body& b : _bodies)
+    if (b.velocityDependent) return true;
+  return false;
+}
+
+void Model::addBodies(Build& build) {
+  const SceneDescription& scene = build.scene;
   for (const BodyDesc& bd : scene.bodies) {
     Body b;
     b.name = bd.name;
+    b.kind = bd.kind;
+    const elements::KindInfo& info = b.info();
     b.elements = bd.elements;
-    curves.emplace_back(bd.geometry, _dim, scene.loads.gravity);
-    b.length = curves.back().length();
+    build.curves.emplace_back(bd.geometry, _dim, scene.loads.gravity);
+    b.length = build.curves.back().length();
     b.elementLength = b.length / b.elements;
-    b.section = {bd.E * bd.A, bd.E * bd.I, bd.rho * bd.A, bd.dampAxial, bd.dampBending};
-    for (int n = 0; n <= b.elements; ++n) {
-      b.posBlock.push_back(_numBlocks++);
-      b.slopeBlock.push_back(_numBlocks++);
-      b.slopeScale.push_back(scene.discretization.slopeScaling ? b.elementLength : 1.0);
-    }
-    for (int k = 0; k < 3; ++k) b.loadPerLength[k] = b.section.rhoA * scene.loads.gravity[k];
+    b.section = bd.section;
+    b.properties = info.properties(bd.section);
+    b.discretization = {b.elementLength, scene.discretization.slopeScaling ? b.elementLength : 1.0,
+                        scene.discretization.gaussPoints};
+    b.velocityDependent = info.velocityDependent(bd.section, b.discretization);
+    b.blocksPerNode = info.blocksPerNode;
+    for (int n = 0; n <= b.elements; ++n)
+      for (int k = 0; k < b.blocksPerNode; ++k) {
+        if (k == 0) b.posBlock.push_back(_numBlocks);
+        b.nodeBlocks.push_back(_numBlocks++);
+      }
+    for (int k = 0; k < 3; ++k) b.loadPerLength[k] = b.properties.rhoA * scene.loads.gravity[k];
     for (const PointMassDesc& pm : bd.pointMasses) {
       const double x = std::min(std::max(pm.at, 0.0), b.length);
       const int e = std::min(static_cast<int>(x / b.elementLength), b.elements - 1);
       b.pointMasses.push_back({e, x / b.elementLength - e, pm.mass});
     }
-    if (_bodies.empty()) _scales = {b.length, b.section.rhoA, b.section.EI, b.section.EA};
-    bodyIndex[b.name] = static_cast<int>(_bodies.size());
+    if (_bodies.empty()) _scales = {b.length, b.properties.rhoA, b.properties.EI, b.properties.EA};
+    build.bodyIndex[b.name] = static_cast<int>(_bodies.size());
     _bodies.push_back(std::move(b));
   }
-  auto findBody = [&](const std::string& name, const SourceMark& mark) -> Body& {
-    auto it = bodyIndex.find(name);
-    if (it == bodyIndex.end()) throw InputError(mark.where() + ": no body named '" + name + "'");
-    return _bodies[it->second];
-  };
-  // 2. junctions: the listed nodes share one position block (union-find over blocks)
+}
+
+void Model::mergeJunctions(Build& build) {
+  // the listed nodes share one position block (union-find over blocks)
   std::vector<int> parent(_numBlocks);
   for (int k = 0; k < _numBlocks; ++k) parent[k] = k;
   auto root = [&](int k) {
     while (parent[k] != k) k = parent[k] = parent[parent[k]];
     return k;
   };
-  for (const JunctionDesc& j : scene.junctions) {
+  for (const JunctionDesc& j : build.scene.junctions) {
     if (j.nodes.size() < 2) throw InputError(j.mark.where() + ": a junction needs at least two nodes");
-    const Body& b0 = findBody(j.nodes[0].body, j.nodes[0].mark);
+    const Body& b0 = build.body(_bodies, j.nodes[0].body, j.nodes[0].mark);
     const int first = root(b0.posBlock[nodeIndex(j.nodes[0], b0)]);
     for (size_t k = 1; k < j.nodes.size(); ++k) {
-      const Body& bk = findBody(j.nodes[k].body, j.nodes[k].mark);
+      const Body& bk = build.body(_bodies, j.nodes[k].body, j.nodes[k].mark);
       const int other = root(bk.posBlock[nodeIndex(j.nodes[k], bk)]);
       const int r0 = root(first);
       parent[std::max(r0, other)] = std::min(r0, other);
@@ -137,16 +149,19 @@ Model::Model(const SceneDescription& scene)
     if (root(k) == k) compact[k] = next++;
   for (Body& b : _bodies) {
     for (int& blk : b.posBlock) blk = compact[root(blk)];
-    for (int& blk : b.slopeBlock) blk = compact[root(blk)];
+    for (int& blk : b.nodeBlocks) blk = compact[root(blk)];
   }
   _numBlocks = next;
+}
+
+void Model::addRigidBodiesAndMultipliers(Build& build) {
   // rigid bodies: 2D position block, rotation block (phi, unused); 3D centre of mass and three
   // frame blocks. Joints: their multiplier blocks (the scene's, then the 3D bodies' frames)
-  std::map<std::string, int> rigidIndex;
+  const SceneDescription& scene = build.scene;
   for (const RigidBodyDesc& rd : scene.rigidBodies) {
-    if (bodyIndex.count(rd.name) || rigidIndex.count(rd.name))
+    if (build.bodyIndex.count(rd.name) || build.rigidIndex.count(rd.name))
       throw InputError(rd.mark.where() + ": the name '" + rd.name + "' is already used by another body");
-    rigidIndex[rd.name] = static_cast<int>(_rigid.size());
+    build.rigidIndex[rd.name] = static_cast<int>(_rigid.size());
     RigidBody rb;
     rb.name = rd.name;
     rb.mass = rd.mass;
@@ -161,7 +176,6 @@ Model::Model(const SceneDescription& scene)
     _numBlocks += rb.blocks(_dim);
     _rigid.push_back(rb);
   }
-  std::vector<int> jointCount;
   for (const JointDesc& jd : scene.joints) {
     const int count = jd.type == JointType::Pin ? _dim : jd.type == JointType::Distance ? 1 : 2 * _dim - 1;
     Joint j;
@@ -171,7 +185,7 @@ Model::Model(const SceneDescription& scene)
     _joints.push_back(std::move(j));
   }
   for (size_t r = 0; r < _rigid.size() && _dim == 3; ++r) {
-    // a driven frame is prescribed (a turning hub of its three axes, below): no equations
+    // a driven frame is prescribed (a turning hub of its three axes, in addSupports): no equations
     if (scene.rigidBodies[r].driven) continue;
     // a_k . a_k = 1 as |a_k| - 1 = 0 (Distance to the origin), a_k . a_l = 0 (Orthogonal)
     Joint j;
@@ -200,26 +214,67 @@ Model::Model(const SceneDescription& scene)
     _rigid[r].frameJoint = static_cast<int>(_joints.size());
     _joints.push_back(std::move(j));
   }
-  // 3. initial coordinates; junction nodes must coincide
+}
+
+void Model::placeInitialState(Build& build) {
+  // each node's blocks from its point on the initial curve, by role: the position, the slope
+  // gradientScale t, the cross-section vector n (t turned by +90 degrees, 2D); junction nodes
+  // must coincide
+  const SceneDescription& scene = build.scene;
   _q0.assign(numDofs(), 0.0);
   std::vector<char> placed(_numBlocks, 0);
   for (size_t bi = 0; bi < _bodies.size(); ++bi) {
     Body& b = _bodies[bi];
+    const elements::KindInfo& info = b.info();
     for (int n = 0; n <= b.elements; ++n) {
-      const CurvePoint p = curves[bi].at(n * b.elementLength);
-      const int pb = b.posBlock[n], sb = b.slopeBlock[n];
+      const CurvePoint p = build.curves[bi].at(n * b.elementLength);
+      const int pb = b.posBlock[n];
       for (int i = 0; i < _dim; ++i) {
         if (placed[pb] && std::fabs(_q0[pb * _dim + i] - p.r[i]) > 1e-9 * std::max(1.0, b.length))
           throw InputError(scene.bodies[bi].mark.where() + ": node " + std::to_string(n) +
                            " of a junction does not coincide with the other nodes of the junction");
         _q0[pb * _dim + i] = p.r[i];
-        _q0[sb * _dim + i] = b.slopeScale[n] * p.t[i];
       }
-      placed[pb] = placed[sb] = 1;
+      placed[pb] = 1;
+      for (int k = 1; k < b.blocksPerNode; ++k) {
+        const int blk = b.block(n, k);
+        double* q = &_q0[blk * _dim];
+        switch (info.layout[k]) {
+          case elements::BlockRole::AxialGradient:
+            for (int i = 0; i < _dim; ++i) q[i] = b.blockScale(k) * p.t[i];
+            break;
+          case elements::BlockRole::TransverseGradient:
+            if (_dim != 2) throw std::logic_error("Model: a transverse gradient block needs a 3D section frame");
+            q[0] = -p.t[1];
+            q[1] = p.t[0];
+            break;
+          case elements::BlockRole::Position:
+            throw std::logic_error("Model: one position block per node");
+        }
+        placed[blk] = 1;
+      }
     }
-    if (scene.bodies[bi].stressFreeInitial) referenceStrains(b, _q0, _gaussPoints);
-    for (int e = 0; e < b.elements; ++e)
-      _elements.push_back({static_cast<int>(bi), e, {b.posBlock[e], b.slopeBlock[e], b.posBlock[e + 1], b.slopeBlock[e + 1]}});
+    const int perElement = b.blocksPerNode * 2;
+    if (scene.bodies[bi].stressFreeInitial) {
+      std::vector<double> q0e(static_cast<size_t>(b.elements) * perElement * _dim);
+      for (int e = 0; e < b.elements; ++e)
+        for (int a = 0; a < perElement; ++a)
+          for (int i = 0; i < _dim; ++i)
+            q0e[(static_cast<size_t>(e) * perElement + a) * _dim + i] = _q0[b.nodeBlocks[e * b.blocksPerNode + a] * _dim + i];
+      b.referenceValues = info.referenceValues(b.section, b.discretization, q0e.data(), b.elements);
+    }
+    ElementGroup* group = nullptr;
+    for (ElementGroup& g : _groups)
+      if (g.kind == b.kind) group = &g;
+    if (!group) {
+      _groups.push_back({b.kind, perElement, {}, {}, {}});
+      group = &_groups.back();
+    }
+    for (int e = 0; e < b.elements; ++e) {
+      group->body.push_back(static_cast<int>(bi));
+      group->index.push_back(e);
+      for (int a = 0; a < perElement; ++a) group->blocks.push_back(b.nodeBlocks[e * b.blocksPerNode + a]);
+    }
   }
   for (size_t r = 0; r < _rigid.size(); ++r) {
     const RigidBodyDesc& rd = scene.rigidBodies[r];
@@ -232,7 +287,10 @@ Model::Model(const SceneDescription& scene)
     for (int k = 0; k < 3; ++k)
       for (int i = 0; i < 3; ++i) _q0[(_rigid[r].rotBlock + k) * 3 + i] = A[i * 3 + k];
   }
-  // 4. supports
+}
+
+void Model::addSupports(Build& build) {
+  const SceneDescription& scene = build.scene;
   _fixed.assign(numDofs(), 0);
   _multiplier.assign(numDofs(), 0);
   for (size_t r = 0; r < _rigid.size(); ++r) {
@@ -258,20 +316,22 @@ Model::Model(const SceneDescription& scene)
         const bool used = static_cast<int>(k) * _dim + i < j.count;
         (used ? _multiplier : _fixed)[j.lambdaBlocks[k] * _dim + i] = 1;
       }
+  // clamped: the position and the orientation block (the cable's slope, a beam's cross-section
+  // vector); pinned: the position; fixed: the listed node coordinates, block by block
   for (const SupportDesc& s : scene.supports) {
-    const Body& b = findBody(s.at.body, s.at.mark);
+    const Body& b = build.body(_bodies, s.at.body, s.at.mark);
     const int n = nodeIndex(s.at, b);
-    const int pb = b.posBlock[n], sb = b.slopeBlock[n];
+    const int pb = b.posBlock[n], ob = b.orientationBlock(n);
     for (int i = 0; i < _dim; ++i) {
       if (s.type == SupportType::Clamped || s.type == SupportType::Pinned) _fixed[pb * _dim + i] = 1;
-      if (s.type == SupportType::Clamped) _fixed[sb * _dim + i] = 1;
+      if (s.type == SupportType::Clamped) _fixed[ob * _dim + i] = 1;
     }
     if (s.type == SupportType::Fixed)
-      for (int c : s.dofs) _fixed[(c < _dim ? pb : sb) * _dim + c % _dim] = 1;
+      for (int c : s.dofs) _fixed[b.block(n, c / _dim) * _dim + c % _dim] = 1;
     if (s.hub.present) {
       HubMotion h{s.hub.center, s.hub.axis, s.hub.angle, {pb}, {0}};
       if (s.type == SupportType::Clamped) {
-        h.blocks.push_back(sb);
+        h.blocks.push_back(ob);
         h.slope.push_back(1);
       }
       for (const HubMotion& other : _hubs)
@@ -280,11 +340,14 @@ Model::Model(const SceneDescription& scene)
       _hubs.push_back(std::move(h));
     }
   }
-  // 5. loads
+}
+
+void Model::addLoads(Build& build) {
+  const SceneDescription& scene = build.scene;
   if (scene.loads.timed) _loadFunction = scene.loads.function;
   _nodalForce.assign(numDofs(), 0.0);
   for (const NodalLoadDesc& l : scene.loads.nodal) {
-    const Body& b = findBody(l.at.body, l.at.mark);
+    const Body& b = build.body(_bodies, l.at.body, l.at.mark);
     const int n = nodeIndex(l.at, b);
     if (l.timed) {
       TimedLoad t{l.function, {}, {}};
@@ -296,22 +359,28 @@ Model::Model(const SceneDescription& scene)
       continue;
     }
     for (int i = 0; i < _dim; ++i) _nodalForce[b.posBlock[n] * _dim + i] += l.force[i];
-    if (l.moment[0] != 0.0 || l.moment[1] != 0.0 || l.moment[2] != 0.0) _moments.push_back({b.slopeBlock[n], l.moment});
+    if (l.moment[0] != 0.0 || l.moment[1] != 0.0 || l.moment[2] != 0.0) _moments.push_back({b.orientationBlock(n), l.moment});
   }
   for (const DistributedLoadDesc& l : scene.loads.distributed) {
-    Body& b = findBody(l.body, l.mark);
+    Body& b = build.body(_bodies, l.body, l.mark);
     for (int k = 0; k < 3; ++k) b.loadPerLength[k] += l.forcePerLength[k];
   }
+  for (size_t r = 0; r < _rigid.size(); ++r) {
+    const RigidBodyDesc& rd = scene.rigidBodies[r];
+    const RigidBody& rb = _rigid[r];
+    for (int i = 0; i < _dim; ++i) _nodalForce[rb.posBlock * _dim + i] += rd.mass * _gravity[i] + rd.force[i];
+    if (_dim == 2) _nodalForce[rb.rotBlock * 2] += rd.torque[2];
+  }
+}
+
+void Model::addInitialVelocities(Build& build) {
+  const SceneDescription& scene = build.scene;
   _v0.assign(numDofs(), 0.0);
   for (size_t r = 0; r < _rigid.size(); ++r) {
     const RigidBodyDesc& rd = scene.rigidBodies[r];
     const RigidBody& rb = _rigid[r];
-    for (int i = 0; i < _dim; ++i) {
-      _nodalForce[rb.posBlock * _dim + i] += rd.mass * _gravity[i] + rd.force[i];
-      _v0[rb.posBlock * _dim + i] = rd.velocity[i];
-    }
+    for (int i = 0; i < _dim; ++i) _v0[rb.posBlock * _dim + i] = rd.velocity[i];
     if (_dim == 2) {
-      _nodalForce[rb.rotBlock * 2] += rd.torque[2];
       _v0[rb.rotBlock * 2] = rd.angularVelocity[2];
       continue;
     }
@@ -324,8 +393,8 @@ Model::Model(const SceneDescription& scene)
       da[2] = w[0] * a[1] - w[1] * a[0];
     }
   }
-  // initial velocities of cables: a rigid motion v = v_lin + w x (r - c), slopes w x r' (the slope
-  // coordinates are sigma r', and so are their rates)
+  // bodies: a rigid motion v = v_lin + w x (r - c) of the positions; gradient blocks turn with it,
+  // w x (their coordinates)
   for (size_t bi = 0; bi < scene.bodies.size(); ++bi) {
     const BodyDesc& bd = scene.bodies[bi];
     if (!bd.hasInitialVelocity) continue;
@@ -346,14 +415,21 @@ Model::Model(const SceneDescription& scene)
       for (int i = 0; i < _dim; ++i) r[i] = _q0[b.posBlock[n] * _dim + i] - bd.velocityCenter[i];
       cross(r, v);
       for (int i = 0; i < _dim; ++i) _v0[b.posBlock[n] * _dim + i] = bd.linearVelocity[i] + v[i];
-      cross(&_q0[b.slopeBlock[n] * _dim], v);
-      for (int i = 0; i < _dim; ++i) _v0[b.slopeBlock[n] * _dim + i] = v[i];
+      for (int k = 1; k < b.blocksPerNode; ++k) {
+        const int blk = b.block(n, k);
+        cross(&_q0[blk * _dim], v);
+        for (int i = 0; i < _dim; ++i) _v0[blk * _dim + i] = v[i];
+      }
     }
   }
   for (int i = 0; i < numDofs(); ++i)  // supports hold their coordinates (hubs: the prescribed rate)
     if (_fixed[i]) _v0[i] = 0.0;
-  // 6. joint equations (directions from the initial state), checked at the initial state
-  auto end = [&](const JointEndDesc& e, Joint& j, int* slopeBlock) -> elements::JointField {
+}
+
+void Model::addJointEquations(Build& build) {
+  // joint equations (directions from the initial state), checked at the initial state
+  const SceneDescription& scene = build.scene;
+  auto end = [&](const JointEndDesc& e, Joint& j, int* orientationBlock) -> elements::JointField {
     elements::JointField f;
     auto addBlock = [&](int blk) {
       j.blocks.push_back(blk);
@@ -365,16 +441,16 @@ Model::Model(const SceneDescription& scene)
         f.c = e.point;
         break;
       case JointEndDesc::Kind::CableNode: {
-        const Body& b = findBody(e.body, e.mark);
+        const Body& b = build.body(_bodies, e.body, e.mark);
         const int n = nodeIndex({e.body, e.node, e.mark}, b);
         f.kind = elements::JointField::Kind::Block;
         f.block = addBlock(b.posBlock[n]);
-        if (slopeBlock) *slopeBlock = b.slopeBlock[n];
+        if (orientationBlock) *orientationBlock = b.orientationBlock(n);
         break;
       }
       case JointEndDesc::Kind::RigidPoint: {
-        auto it = rigidIndex.find(e.body);
-        if (it == rigidIndex.end()) throw InputError(e.mark.where() + ": no rigid body named '" + e.body + "'");
+        auto it = build.rigidIndex.find(e.body);
+        if (it == build.rigidIndex.end()) throw InputError(e.mark.where() + ": no rigid body named '" + e.body + "'");
         const RigidBody& rb = _rigid[it->second];
         f.kind = elements::JointField::Kind::RigidPoint;
         f.block = addBlock(rb.posBlock);
@@ -401,7 +477,8 @@ Model::Model(const SceneDescription& scene)
     }
     j.equations.push_back(eq);
     if (jd.type == JointType::Clamp) {
-      // the slope keeps its initial direction t: r' . n = 0 for the normals n of t (2D: one, 3D: two)
+      // the orientation vector (the cable's slope, a beam's r_y) keeps its initial direction t:
+      // t' . n = 0 for the normals n of t (2D: one, 3D: two)
       const int sb = static_cast<int>(j.blocks.size());
       j.blocks.push_back(slope);
       Vec3 t{};
@@ -452,7 +529,9 @@ Model::Model(const SceneDescription& scene)
         throw InputError(jd.mark.where() + ": the initial state violates this joint by " + std::to_string(g[r]) +
                          " (equation " + std::to_string(r) + "); place its ends together (pin, clamp) or omit `length` (distance)");
   }
-  // 7. couplings: rigid bodies and joints
+}
+
+void Model::addCouplings() {
   for (size_t r = 0; r < _rigid.size(); ++r) {
     Coupling c{static_cast<int>(r), -1, {}};
     for (int k = 0; k < _rigid[r].blocks(_dim); ++k) c.blocks.push_back(_rigid[r].posBlock + k);

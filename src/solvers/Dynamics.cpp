@@ -17,11 +17,10 @@ namespace strand::solvers {
 Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& desc) : _asm(assembler), _desc(desc) {
   const model::DofMap& dofs = assembler.dofs();
   MPI_Comm comm = dofs.comm();
-  for (const model::Body& b : assembler.model().bodies())
-    _damped = _damped || b.section.dampAxial != 0.0 || b.section.dampBending != 0.0;
+  _damped = assembler.model().velocityDependent();
   _moving = assembler.model().hasPrescribedMotion();
   _constrained = assembler.hasConstraints();
-  for (const model::Body& b : assembler.model().bodies()) _energyFloor += 1e-12 * b.section.EA * b.length;
+  for (const model::Body& b : assembler.model().bodies()) _energyFloor += 1e-12 * b.properties.EA * b.length;
   PetscCallAbort(comm, dofs.createMatrix(&_M, "dyn_mass_"));
   PetscCallAbort(comm, dofs.createMatrix(&_J, "dyn_"));
   PetscCallAbort(comm, assembler.massMatrix(_M, false));

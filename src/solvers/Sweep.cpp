@@ -3,7 +3,7 @@
 #include <cmath>
 #include <memory>
 
-#include "strand/math/Hermite.hpp"
+#include "strand/elements/ElementRegistry.hpp"
 #include "strand/solvers/ModalSolver.hpp"
 #include "strand/solvers/Problem.hpp"
 #include "strand/solvers/StaticSolver.hpp"
@@ -84,8 +84,9 @@ double mac(const StoredShape& x, const StoredShape& y) {
 }
 
 // Vibration nodes of a mode shape on body 0: interior zeros of its dominant displacement component
-// w(x), as x / L. Within each element w is the cubic Hermite interpolant of the nodal values and
-// slopes (seed 003 Eq. 69-71), so the nodes converge like the shape (h^4), not like a chord (h^2).
+// w(x), as x / L. Within each element w is the kind's centerline interpolant (the cable's cubic
+// Hermite of the nodal values and slopes, seed 003 Eq. 69-71), so the nodes converge like the shape
+// (h^4 for the cable), not like a chord (h^2).
 // Elements whose end values differ in sign are searched: 8 sub-intervals bracket the zero, which
 // is then bisected. (Two zeros inside one element, with equal end signs, mean a mesh too coarse
 // for that mode and are not reported.)
@@ -101,15 +102,15 @@ std::vector<double> vibrationNodes(const model::Model& m, const std::vector<doub
   double amax = 0.0;
   for (int pb : b.posBlock) amax = std::max(amax, std::fabs(disp[pb * d + c]));
   std::vector<double> nodes;
-  const double tiny = 1e-8 * amax, l = b.elementLength;
+  const double tiny = 1e-8 * amax;
   for (int n = 0; n < b.elements; ++n) {
     const double w1 = disp[b.posBlock[n] * d + c], w2 = disp[b.posBlock[n + 1] * d + c];
     if ((w1 > 0) == (w2 > 0) && std::fabs(w1) >= tiny && std::fabs(w2) >= tiny) continue;
-    const double t1 = disp[b.slopeBlock[n] * d + c] / b.slopeScale[n];
-    const double t2 = disp[b.slopeBlock[n + 1] * d + c] / b.slopeScale[n + 1];
     auto w = [&](double eta) {
-      const auto h = math::hermite(eta);
-      return h.s[0] * w1 + h.s[1] * l * t1 + h.s[2] * w2 + h.s[3] * l * t2;
+      double weight[elements::kMaxBlocksPerElement], sum = 0.0;
+      b.info().interpolation(b.discretization, eta, weight);
+      for (int a = 0; a < 2 * b.blocksPerNode; ++a) sum += weight[a] * disp[b.nodeBlocks[n * b.blocksPerNode + a] * d + c];
+      return sum;
     };
     constexpr int kSub = 8;
     for (int j = 0; j < kSub; ++j) {
@@ -187,7 +188,8 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
       if (!speedSweep) {
         model::PointMassDesc& pm = sc.bodies[0].pointMasses[sw.mass];
         const model::BodyDesc& b = sc.bodies[0];
-        if (sw.parameter == model::SweepParameter::MassRatio) pm.mass = p * b.rho * b.A * length;
+        if (sw.parameter == model::SweepParameter::MassRatio)
+          pm.mass = p * elements::kindInfo(b.kind).properties(b.section).rhoA * length;
         else pm.at = p * length;
       }
       std::unique_ptr<Problem> next = std::make_unique<Problem>(comm, sc);

@@ -15,8 +15,8 @@ using namespace strand::testing;
 namespace {
 model::SceneDescription hanging(int n) {
   auto sc = cantilever(3, n, 1.0);  // clamped at 0, gravity: a 3D cable cantilever (L = 1 m, d = 10 mm steel)
-  sc.bodies[0].A = M_PI * 0.25 * 1e-4;
-  sc.bodies[0].I = M_PI * 1e-8 / 64.0;
+  sc.bodies[0].section.set("A", M_PI * 0.25 * 1e-4);
+  sc.bodies[0].section.set("I", M_PI * 1e-8 / 64.0);
   sc.loads.gravity = {0, 0, -9.81};
   return sc;
 }

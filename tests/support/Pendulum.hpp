@@ -31,7 +31,8 @@ inline model::SceneDescription flexiblePendulum(double damping = 0.0, double E =
   auto sc = cantilever(2, elements, 1.0, s);
   sc.supports[0].type = model::SupportType::Pinned;
   sc.loads.gravity = {0, -9.81, 0};
-  sc.bodies[0].dampAxial = sc.bodies[0].dampBending = damping;
+  sc.bodies[0].section.set("damping_axial", damping);
+  sc.bodies[0].section.set("damping_bending", damping);
   return sc;
 }
 
@@ -51,7 +52,7 @@ inline PendulumRun runPendulum(const model::SceneDescription& sc, const model::D
   Vec X, V;
   PetscCallAbort(comm, p.createInitialState(&X, &V));
   PendulumRun out;
-  out.scale = sc.bodies[0].rho * sc.bodies[0].A * 1.0 * 9.81 * 0.5;
+  out.scale = sc.bodies[0].section.number("rho") * sc.bodies[0].section.number("A") * 1.0 * 9.81 * 0.5;
   solvers::Dynamics dyn(p.assembler(), d);
   if (fromOptions) PetscCallAbort(comm, dyn.setFromOptions());
   solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec, Vec) -> PetscErrorCode {

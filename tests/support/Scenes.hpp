@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "strand/elements/ElementRegistry.hpp"
 #include "strand/model/SceneDescription.hpp"
 #include "strand/solvers/Problem.hpp"
 #include "strand/solvers/StaticSolver.hpp"
@@ -20,15 +21,15 @@ inline model::BodyDesc straightBody(const std::string& name, int dim, int elemen
                                     model::Vec3 end, const Section& s = {}) {
   model::BodyDesc b;
   b.name = name;
-  b.type = dim == 2 ? model::ElementType::AncfCable2d : model::ElementType::AncfCable3d;
+  b.kind = elements::findKind(dim == 2 ? "AncfCable2d" : "AncfCable3d");
   b.elements = elements;
   b.geometry.kind = model::GeometryKind::Line;
   b.geometry.start = start;
   b.geometry.end = end;
-  b.E = s.E;
-  b.A = s.A;
-  b.I = s.I;
-  b.rho = s.rho;
+  b.section.set("E", s.E);
+  b.section.set("A", s.A);
+  b.section.set("I", s.I);
+  b.section.set("rho", s.rho);
   return b;
 }
 
@@ -125,7 +126,8 @@ inline model::SceneDescription cableWithTwoBodies3d(double E) {
   sc.supports.clear();
   sc.analysis = model::Analysis::Dynamic;
   sc.loads.gravity = {0, 0, -9.81};
-  sc.bodies[0].dampAxial = sc.bodies[0].dampBending = 2e-3;
+  sc.bodies[0].section.set("damping_axial", 2e-3);
+  sc.bodies[0].section.set("damping_bending", 2e-3);
   model::NodalLoadDesc moment;
   moment.at.body = "beam";
   moment.at.node = 2;

@@ -93,7 +93,7 @@ TYPED_TEST(AncfCableTest, StiffnessAndDampingTangentsEqualDualNumberDerivatives)
   }
 }
 
-// The kernels evaluate the Gauss points of an element as one padded array (CablePointTable.hpp;
+// The kernels evaluate the Gauss points of an element as one padded array (SlotIntegration.hpp;
 // 2..8 points are padded to 2, 4, 6, 8), and the 3D tangent without curvature-rate damping has its
 // own closed form (pointTangents3d). Every point count, undamped / axial damping alone / both, with
 // and without the precomputed table: tangents equal the dual-number derivatives of the force, and

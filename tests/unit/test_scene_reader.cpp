@@ -10,11 +10,13 @@
 #include <string>
 
 #include "strand/core/Error.hpp"
+#include "strand/elements/ElementRegistry.hpp"
 #include "strand/io/SceneReader.hpp"
 
 namespace fs = std::filesystem;
 using namespace strand;
 using namespace strand::model;
+namespace elements = strand::elements;
 using strand::io::parseScene;
 using strand::io::readScene;
 
@@ -182,17 +184,17 @@ TEST(SceneReader, FullScene3dParsesEveryValue) {
 
   const BodyDesc& a = s.bodies[0];
   EXPECT_EQ(a.name, "a");
-  EXPECT_EQ(a.type, ElementType::AncfCable3d);
+  EXPECT_EQ(a.kind, elements::findKind("AncfCable3d"));
   EXPECT_EQ(a.elements, 10);
   EXPECT_EQ(a.geometry.kind, GeometryKind::Line);
   expectVec(a.geometry.start, 0, 0, 0);
   expectVec(a.geometry.end, 3, 4, 0);
-  EXPECT_DOUBLE_EQ(a.E, 2.1e11);
-  EXPECT_DOUBLE_EQ(a.A, 7.85e-5);
-  EXPECT_DOUBLE_EQ(a.I, 4.91e-10);
-  EXPECT_DOUBLE_EQ(a.rho, 7850);
-  EXPECT_DOUBLE_EQ(a.dampAxial, 0.01);
-  EXPECT_DOUBLE_EQ(a.dampBending, 0.02);
+  EXPECT_DOUBLE_EQ(a.section.number("E"), 2.1e11);
+  EXPECT_DOUBLE_EQ(a.section.number("A"), 7.85e-5);
+  EXPECT_DOUBLE_EQ(a.section.number("I"), 4.91e-10);
+  EXPECT_DOUBLE_EQ(a.section.number("rho"), 7850);
+  EXPECT_DOUBLE_EQ(a.section.number("damping_axial"), 0.01);
+  EXPECT_DOUBLE_EQ(a.section.number("damping_bending"), 0.02);
   EXPECT_FALSE(a.stressFreeInitial);
   ASSERT_EQ(a.pointMasses.size(), 2u);
   EXPECT_DOUBLE_EQ(a.pointMasses[0].at, 2.5);
@@ -210,8 +212,8 @@ TEST(SceneReader, FullScene3dParsesEveryValue) {
   EXPECT_DOUBLE_EQ(b.geometry.startAngle, -M_PI / 2);
   EXPECT_DOUBLE_EQ(b.geometry.endAngle, 0.0);
   expectVec(b.geometry.normal, 0, 1, 0);  // normalized
-  EXPECT_DOUBLE_EQ(b.E, 1e9);
-  EXPECT_DOUBLE_EQ(b.dampAxial, 0.0);
+  EXPECT_DOUBLE_EQ(b.section.number("E"), 1e9);
+  EXPECT_DOUBLE_EQ(b.section.number("damping_axial"), 0.0);
   EXPECT_DOUBLE_EQ(b.pointMasses.at(0).at, M_PI / 2);  // the arc length
   EXPECT_EQ(b.geometry.mark.line, 18);  // the line of the key
 
@@ -284,8 +286,8 @@ TEST(SceneReader, MinimalSceneGetsDefaults) {
   EXPECT_TRUE(s.junctions.empty());
   EXPECT_TRUE(s.loads.distributed.empty());
   const BodyDesc& b = s.bodies.at(0);
-  EXPECT_DOUBLE_EQ(b.dampAxial, 0.0);
-  EXPECT_DOUBLE_EQ(b.dampBending, 0.0);
+  EXPECT_DOUBLE_EQ(b.section.number("damping_axial"), 0.0);
+  EXPECT_DOUBLE_EQ(b.section.number("damping_bending"), 0.0);
   EXPECT_FALSE(b.stressFreeInitial);
   EXPECT_TRUE(b.pointMasses.empty());
   expectVec(b.geometry.sagDirection, 0, 0, 0);
@@ -317,7 +319,7 @@ TEST(SceneReader, Scene2dAcceptsTwoEntryVectorsScalarMomentsAndInitialStressFree
   const SceneDescription s = parseScene(yaml, "ring.yaml");
   EXPECT_EQ(s.dimension, 2);
   ASSERT_EQ(s.bodies.size(), 2u);
-  EXPECT_EQ(s.bodies[0].type, ElementType::AncfCable2d);
+  EXPECT_EQ(s.bodies[0].kind, elements::findKind("AncfCable2d"));
   EXPECT_TRUE(s.bodies[0].stressFreeInitial);
   expectVec(s.bodies[0].geometry.center, 1, 2, 0);
   expectVec(s.bodies[0].geometry.normal, 0, 0, 1);  // default

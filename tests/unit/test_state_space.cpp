@@ -82,7 +82,8 @@ struct Fixture {
 
   Fixture() {
     scene = seed001Beam(7e10, 4, 4.0, 15.0);
-    scene.bodies[0].dampAxial = scene.bodies[0].dampBending = 2e-3;
+    scene.bodies[0].section.set("damping_axial", 2e-3);
+    scene.bodies[0].section.set("damping_bending", 2e-3);
     problem = std::make_unique<solvers::Problem>(comm, scene);
     assembly::Assembler& a = problem->assembler();
     PetscCallAbort(comm, problem->dofs().createMatrix(&M, nullptr));

@@ -58,11 +58,11 @@ Observed observe(solvers::Problem& p, Vec X, Vec V) {
   PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
   Observed o;
   const model::Body& b = p.model().bodies()[0];
-  o.mass = b.section.rhoA * b.length;
+  o.mass = b.properties.rhoA * b.length;
   double v[6] = {0, 0, 0, 0, 0, 0};
   if (!q.empty()) {
     for (int n = 0; n <= b.elements; ++n) {
-      const int pb = b.posBlock[n], sb = b.slopeBlock[n];
+      const int pb = b.posBlock[n], sb = b.block(n, 1);
       v[0] += mx[2 * pb];
       v[1] += mx[2 * pb + 1];
       v[2] += mv[2 * pb];
@@ -117,7 +117,8 @@ Trajectory run(const model::SceneDescription& sc, const model::DynamicsDesc& d) 
 TEST(InitialStateAndLoads, AFreeRopeKeepsItsMomentumAndAngularMomentum) {
   model::SceneDescription sc = freeRope();
   model::BodyDesc& b = sc.bodies[0];
-  b.dampAxial = b.dampBending = 3e-4;  // Kelvin-Voigt: objective, so it keeps L too
+  b.section.set("damping_axial", 3e-4);  // Kelvin-Voigt: objective, so it keeps L too
+  b.section.set("damping_bending", 3e-4);  // Kelvin-Voigt: objective, so it keeps L too
   b.hasInitialVelocity = true;
   b.linearVelocity = {1.0, 0.5, 0.0};
   b.angularVelocity = {0.0, 0.0, 2.0};

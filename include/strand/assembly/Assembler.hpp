@@ -19,7 +19,9 @@
 
 namespace strand::assembly {
 
+class ElementFamily;
 class Multibody;
+class NodalMomentLoads;
 
 // What the rows of supported DOFs hold in a residual: the unit-row convention (the DOF value), or
 // the assembled f_int - f_ext, i.e. (with M a added) the force the support exerts on the body.
@@ -113,8 +115,6 @@ public:
   PetscErrorCode toModelOrder(Vec X, std::vector<double>& modelOrdered);
   PetscErrorCode fromModelOrder(const std::vector<double>& modelOrdered, Vec X);
 
-  struct Impl;  // dimension-specific kernels (Assembler.cpp)
-
 private:
   // The ghosted local form of a global vector, read only. A vector of our DofMap (from
   // DofMap::createVector or a duplicate of one: the solvers' vectors but the first-order state's
@@ -147,7 +147,8 @@ private:
 
   const model::Model& _model;
   const model::DofMap& _dofs;
-  std::unique_ptr<Impl> _impl;
+  std::vector<std::unique_ptr<ElementFamily>> _families;  // one per element group (kind)
+  std::unique_ptr<NodalMomentLoads> _moments;
   std::unique_ptr<Multibody> _multibody;
   PetscReal _constraintScale = 1.0;
   std::vector<char> _multiplierOwned;       // per owned DOF

@@ -29,11 +29,15 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "strand/elements/CablePointTable.hpp"
 #include "strand/elements/CableSection.hpp"
 #include "strand/elements/CableShapeTable.hpp"
+#include "strand/elements/ElementKind.hpp"
+#include "strand/elements/SlotIntegration.hpp"
 
 namespace strand::elements {
+
+// The slots r_1, r_1', r_2, r_2' at the Gauss points of one rule, channels r' (B1) and r'' (B2).
+using CablePointTable = SlotPoints<4, 2>;
 
 template <int D>
 class AncfCable final {
@@ -46,6 +50,7 @@ public:
   static constexpr int kDof = 4 * D;
   static constexpr int kCurv = (D == 2) ? 1 : 3;  // components of the curvature vector
   static constexpr int kG = 2 * D;                // size of G = (r', r'')
+  using Calc = SlotCalculus<D, 4, 2, 2>;           // slots r_1, r_1', r_2, r_2'; channels r', r''
 
   // Shape-function values N and their x-derivatives B1, B2 for the four coordinate slots.
   struct Slots {
@@ -73,7 +78,7 @@ public:
     return sl;
   }
 
-  // The slots at all points of tab as a structure of arrays (CablePointTable.hpp).
+  // The slots at all points of tab as a structure of arrays (SlotIntegration.hpp).
   static CablePointTable pointTable(const Geometry& geo, const CableShapeTable& tab) {
     if (tab.size() < 1 || tab.size() > CablePointTable::kMax)
       throw std::invalid_argument("AncfCable: 1 to 8 Gauss points");
@@ -84,10 +89,10 @@ public:
       const Slots sl = slots(geo, tab.at[g < t.count ? g : t.count - 1]);
       t.wl[g] = g < t.count ? tab.rule.w[g] * geo.length : 0.0;
       for (int a = 0; a < 4; ++a) {
-        t.B1[a][g] = sl.B1[a];
-        t.B2[a][g] = sl.B2[a];
-        t.wB1[a][g] = t.wl[g] * sl.B1[a];
-        t.wB2[a][g] = t.wl[g] * sl.B2[a];
+        t.B[0][a][g] = sl.B1[a];
+        t.B[1][a][g] = sl.B2[a];
+        t.wB[0][a][g] = t.wl[g] * sl.B1[a];
+        t.wB[1][a][g] = t.wl[g] * sl.B2[a];
       }
     }
     return t;
@@ -215,38 +220,119 @@ public:
     }
   }
 
+  // ---- the element-kind contract (ElementKind.hpp; docs/architecture.md, "Element kinds") ----
+  static constexpr const char* kName = D == 2 ? "AncfCable2d" : "AncfCable3d";
+  static constexpr int kBlocksPerNode = 2;
+  static constexpr int kBlocks = 4;  // r_1, r_1', r_2, r_2'
+  static constexpr BlockRole kNodeLayout[kBlocksPerNode] = {BlockRole::Position, BlockRole::AxialGradient};
+  static constexpr int kOrientationBlock = 1;          // a clamp holds the slope; a moment turns it
+  static constexpr bool kStressFreeInitial = D == 2;   // stress_free: initial (reference curvature)
+  static constexpr SectionKey kSectionKeys[] = {
+      {"E", "Young's modulus [Pa]", true, 0.0, 0.0, false, kNoLimit},
+      {"A", "cross-section area [m^2]", true, 0.0, 0.0, false, kNoLimit},
+      {"I", "second moment of area [m^4]", true, 0.0, 0.0, false, kNoLimit},
+      {"rho", "density [kg/m^3]", true, 0.0, 0.0, false, kNoLimit},
+      {"damping_axial", "Kelvin-Voigt coefficient on the axial strain rate [s]", false, 0.0, 0.0, true, kNoLimit},
+      {"damping_bending", "Kelvin-Voigt coefficient on the curvature rate [s]", false, 0.0, 0.0, true, kNoLimit},
+  };
+  static constexpr int kOptionCount = 0;
+  static constexpr OptionKey kOptions[1] = {{nullptr, nullptr, {nullptr}}};
+
+  // The constants of one body (uniform elements): section, rules, the Gauss-point slots.
+  struct Body {
+    CableSection section;
+    CableShapeTable tab{5}, massTab{4};  // elastic rule (discretization.gauss_points), exact mass rule
+    Geometry geo;                        // of every element, but kappa0 and the table pointers
+    CablePointTable points;              // pointTable(geo, tab)
+  };
+  using Element = Geometry;
+
+  static BeamProperties properties(const SectionValues& v) {
+    return {v.number("E") * v.number("A"), v.number("E") * v.number("I"), v.number("rho") * v.number("A")};
+  }
+
+  static Body body(const SectionValues& v, const BodyDiscretization& d) {
+    Body b;
+    b.section = {v.number("E") * v.number("A"), v.number("E") * v.number("I"), v.number("rho") * v.number("A"),
+                 v.number("damping_axial"), v.number("damping_bending")};
+    b.tab = CableShapeTable(d.gaussPoints);
+    b.geo.length = d.elementLength;
+    b.geo.slopeScale[0] = b.geo.slopeScale[1] = d.gradientScale;
+    b.points = pointTable(b.geo, b.tab);
+    return b;
+  }
+
+  // referenceValues: the element's kappa0 at the points of b.tab (null: straight).
+  static Element element(const Body& b, const double* referenceValues) {
+    Element e = b.geo;
+    e.kappa0 = referenceValues;
+    e.points = &b.points;
+    e.pointsOf = &b.tab;
+    return e;
+  }
+
+  static bool velocityDependent(const Body& b) {
+    return b.section.dampAxial != 0.0 || b.section.dampBending != 0.0;
+  }
+
+  template <class S>
+  static void force(const Body& b, const Element& e, const double* q0, const S* u, const S* v, S* f) {
+    force(b.section, e, b.tab, q0, u, v, f);
+  }
+  static void tangent(const Body& b, const Element& e, const double* q0, const double* u, const double* v, double* f,
+                      double* K, double* Dm) {
+    tangent(b.section, e, b.tab, q0, u, v, f, K, Dm);
+  }
+  template <class S>
+  static S strainEnergy(const Body& b, const Element& e, const double* q0, const S* u) {
+    return strainEnergy(b.section, e, b.tab, q0, u);
+  }
+
+  // The slot mass m (4 x 4, row-major): M = m (x) I_D.
+  static void slotMass(const Body& b, double* m) {
+    double Me[kDof * kDof];
+    mass(b.section, b.geo, b.massTab, Me);
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < 4; ++c) m[a * 4 + c] = Me[(a * D) * kDof + c * D];
+  }
+
+  // Centerline position r(eta) = sum_a w_a q_a (slots N of seed 003 Eq. 69-71).
+  static void interpolation(const BodyDiscretization& d, double eta, double* w) {
+    Geometry geo;
+    geo.length = d.elementLength;
+    geo.slopeScale[0] = geo.slopeScale[1] = d.gradientScale;
+    const Slots sl = slots(geo, math::hermite(eta));
+    for (int a = 0; a < 4; ++a) w[a] = sl.N[a];
+  }
+
+  // Consistent load of a constant force per unit length p.
+  static void consistentLoad(const Body& b, const double* p, double* f) { distributedLoad(b.geo, b.tab, p, f); }
+
+  // Stress-free initial shape (2D): the curvature of the interpolated initial shape at the points.
+  static int referenceValueCount(const Body& b) { return b.tab.size(); }
+  static void referenceValues(const Body& b, const double* q0, double* kappa0) {
+    for (int g = 0; g < b.tab.size(); ++g) {
+      double G[kG], kap[kCurv];
+      gather(slots(b.geo, b.tab.at[g]), q0, G);
+      curvature(G, kap);
+      kappa0[g] = kap[0];
+    }
+  }
+
 private:
   // ---- the Gauss points of one element as a structure of arrays ----
-  // X[k][g] is component k at point g, for the P (padded, CablePointTable.hpp) points of the
+  // X[k][g] is component k at point g, for the P (padded, SlotIntegration.hpp) points of the
   // element. Pointwise physics stays in pointForce and pointTangent; the loops here call them point
   // by point (inlined), and with a compile-time P the compiler evaluates two or more points per
   // instruction (-O3; docs/performance.md). The 3D tangent, too large for that, is written in array
   // form (pointTangents3d).
 
-  // G = (r', r'') at every point from element coordinates (gather(): positions via the chord).
-  template <int P, class S, class Q>
-  static void pointGather(const CablePointTable& t, const Q* q, S G[kG][P]) {
-    for (int i = 0; i < D; ++i) {
-      const Q chord = q[2 * D + i] - q[i], slope1 = q[D + i], slope2 = q[3 * D + i];
-      for (int g = 0; g < P; ++g) {
-        G[i][g] = t.B1[2][g] * chord + t.B1[1][g] * slope1 + t.B1[3][g] * slope2;
-        G[D + i][g] = t.B2[2][g] * chord + t.B2[1][g] * slope1 + t.B2[3][g] * slope2;
-      }
-    }
-  }
-
-  // Point g of an array X[k][g] (the pointwise functions take one point's values).
-  template <int P, class S>
-  [[gnu::always_inline]] static void lane(const S X[kG][P], int g, S* x) {
-    for (int k = 0; k < kG; ++k) x[k] = X[k][g];
-  }
-
   // G = G0 + Gu and the axial strain eps = r0'.u' + u'.u'/2 at every point (no cancellation).
   template <int P, class S>
   static void pointKinematics(const CablePointTable& t, const double* q0, const S* u, S G[kG][P], S eps[P]) {
     double G0[kG][P];
-    pointGather<P>(t, q0, G0);
-    pointGather<P>(t, u, G);
+    Calc::template gather<P>(t, q0, G0);
+    Calc::template gather<P>(t, u, G);
     for (int g = 0; g < P; ++g) eps[g] = S(0.0);
     for (int i = 0; i < D; ++i)
       for (int g = 0; g < P; ++g) eps[g] += G0[i][g] * G[i][g] + 0.5 * G[i][g] * G[i][g];
@@ -260,26 +346,14 @@ private:
     for (int g = 0; g < P; ++g) k0[g] = (D == 2 && geo.kappa0 && g < t.count) ? geo.kappa0[g] : 0.0;
   }
 
-  // f_a = sum_g w_g l (B1_a f_G[r'] + B2_a f_G[r'']) for the slots a = 1..3; slot 0 = -slot 2.
-  template <int P, class S>
-  static void integrateForce(const CablePointTable& t, const S fG[kG][P], S* f) {
-    for (int a = 1; a < 4; ++a)
-      for (int i = 0; i < D; ++i) {
-        S sum(0.0);
-        for (int g = 0; g < P; ++g) sum += t.wB1[a][g] * fG[i][g] + t.wB2[a][g] * fG[D + i][g];
-        f[a * D + i] = sum;
-      }
-    for (int i = 0; i < D; ++i) f[i] = -f[2 * D + i];  // B_0 = -B_2 (completeFirstPosition)
-  }
-
   // pointForce at every point; Damped is a template argument so that the loop has no branch.
   template <bool Damped, int P, class S>
   static void pointForces(const CableSection& sec, const double k0[P], const S eps[P], const S G[kG][P],
                           const S Gd[kG][P], S fG[kG][P]) {
     for (int g = 0; g < P; ++g) {
       S Gg[kG], Gdg[kG], fGg[kG];
-      lane<P>(G, g, Gg);
-      if (Damped) lane<P>(Gd, g, Gdg);
+      Calc::template lane<P>(G, g, Gg);
+      if (Damped) Calc::template lane<P>(Gd, g, Gdg);
       pointForce(sec, k0[g], eps[g], Gg, Damped ? Gdg : nullptr, fGg);
       for (int k = 0; k < kG; ++k) fG[k][g] = fGg[k];
     }
@@ -294,12 +368,12 @@ private:
     referenceCurvature<P>(geo, t, k0);
     if (v) {
       S Gd[kG][P];
-      pointGather<P>(t, v, Gd);
+      Calc::template gather<P>(t, v, Gd);
       pointForces<true, P>(sec, k0, eps, G, Gd, fG);
     } else {
       pointForces<false, P>(sec, k0, eps, G, G, fG);  // (the rates argument is unused)
     }
-    integrateForce<P>(t, fG, f);
+    Calc::template integrateForce<P>(t, fG, f);
   }
 
   // W = 1/2 EA eps^2 + 1/2 EI |kappa - kappa0|^2 at every point, integrated.
@@ -312,7 +386,7 @@ private:
     referenceCurvature<P>(geo, t, k0);
     for (int g = 0; g < P; ++g) {
       S Gg[kG];
-      lane<P>(G, g, Gg);
+      Calc::template lane<P>(G, g, Gg);
       w[g] = 0.5 * sec.EA * eps[g] * eps[g];
       if constexpr (D == 3) {  // no reference curvature: |kappa|^2 = |r' x r''|^2 / s^3, no root
         S c[3];
@@ -336,12 +410,12 @@ private:
                          const S* v) {
     S G[kG][P], Gd[kG][P], eps[P];
     pointKinematics<P>(t, q0, u, G, eps);
-    pointGather<P>(t, v, Gd);
+    Calc::template gather<P>(t, v, Gd);
     S R(0.0);
     for (int g = 0; g < P; ++g) {
       S Gg[kG], Gdg[kG];
-      lane<P>(G, g, Gg);
-      lane<P>(Gd, g, Gdg);
+      Calc::template lane<P>(G, g, Gg);
+      Calc::template lane<P>(Gd, g, Gdg);
       S epsDot = Gg[0] * Gdg[0];
       for (int i = 1; i < D; ++i) epsDot += Gg[i] * Gdg[i];
       // kappa-dot by the exact time derivative of c / s^(3/2)
@@ -379,8 +453,8 @@ private:
     }
     for (int g = 0; g < P; ++g) {
       double Gg[kG], Gdg[kG], fGg[kG], KGg[kG][kG], DGg[kG][kG];
-      lane<P>(G, g, Gg);
-      if (Damped) lane<P>(Gd, g, Gdg);
+      Calc::template lane<P>(G, g, Gg);
+      if (Damped) Calc::template lane<P>(Gd, g, Gdg);
       pointTangent(sec, k0[g], eps[g], Gg, Damped ? Gdg : nullptr, fGg, KGg, DGg);
       for (int k = 0; k < kG; ++k) {
         fG[k][g] = fGg[k];
@@ -460,29 +534,6 @@ private:
       }
   }
 
-  // Element matrix entries sum_g w_g l sum_{alpha,beta} B_alpha[a] X[alpha i][beta j] B_beta[b] for
-  // the slots a, b = 1..3; with upperOnly, only the blocks b >= a (the caller mirrors a symmetric
-  // result). Slot 0 (position of node 1) follows from completeFirstPosition.
-  template <int P>
-  static void integrateMatrix(const CablePointTable& t, const double X[kG][kG][P], double* K, bool upperOnly) {
-    // T[a][i][k][g] = w l (B1_a X[r'_i, k] + B2_a X[r''_i, k]) first: elementwise over the points,
-    // so it vectorizes; what is left are 9 sums over the points per block, not 9 x 4 terms
-    // (19 % off the 3D tangent kernel, session 15)
-    double T[3][D][kG][P];
-    for (int a = 1; a < 4; ++a)
-      for (int i = 0; i < D; ++i)
-        for (int k = 0; k < kG; ++k)
-          for (int g = 0; g < P; ++g) T[a - 1][i][k][g] = t.wB1[a][g] * X[i][k][g] + t.wB2[a][g] * X[D + i][k][g];
-    for (int a = 1; a < 4; ++a)
-      for (int b = upperOnly ? a : 1; b < 4; ++b)
-        for (int i = 0; i < D; ++i)
-          for (int j = 0; j < D; ++j) {
-            double sum = 0.0;
-            for (int g = 0; g < P; ++g) sum += T[a - 1][i][j][g] * t.B1[b][g] + T[a - 1][i][D + j][g] * t.B2[b][g];
-            K[(a * D + i) * kDof + b * D + j] = sum;
-          }
-  }
-
   template <int P>
   static void tangentAt(const CableSection& sec, const Geometry& geo, const CablePointTable& t, const double* q0,
                         const double* u, const double* v, double* f, double* K, double* Dm) {
@@ -490,20 +541,18 @@ private:
     pointKinematics<P>(t, q0, u, G, eps);
     referenceCurvature<P>(geo, t, k0);
     if (v) {
-      pointGather<P>(t, v, Gd);
+      Calc::template gather<P>(t, v, Gd);
       pointTangents<true, P>(sec, k0, eps, G, Gd, fG, KG, DG);
     } else {
       pointTangents<false, P>(sec, k0, eps, G, G, fG, KG, DG);  // (the rates argument is unused)
     }
-    if (f) integrateForce<P>(t, fG, f);
-    integrateMatrix<P>(t, KG, K, !v);
-    if (!v)  // K is symmetric without damping: only blocks b >= a were summed
-      for (int r = D; r < kDof; ++r)
-        for (int c = (r / D + 1) * D; c < kDof; ++c) K[c * kDof + r] = K[r * kDof + c];
-    completeFirstPosition(K);
+    if (f) Calc::template integrateForce<P>(t, fG, f);
+    Calc::template integrateMatrix<P>(t, KG, K, !v);
+    if (!v) Calc::mirrorUpper(K);  // K is symmetric without damping: only blocks b >= a were summed
+    Calc::completeFirstPosition(K);
     if (Dm && v) {
-      integrateMatrix<P>(t, DG, Dm, false);
-      completeFirstPosition(Dm);
+      Calc::template integrateMatrix<P>(t, DG, Dm, false);
+      Calc::completeFirstPosition(Dm);
     } else if (Dm) {
       for (int k = 0; k < kDof * kDof; ++k) Dm[k] = 0.0;
     }
@@ -692,15 +741,6 @@ private:
     }
   }
 
-  // The strains see the positions only through the chord r_2 - r_1 (gather), so the derivative
-  // weights of the two position slots are opposite (B_0 = -B_2): the rows and the columns of
-  // slot 0 are minus those of slot 2, and block (0, 0) equals block (2, 2).
-  static void completeFirstPosition(double* K) {
-    for (int r = D; r < kDof; ++r)
-      for (int j = 0; j < D; ++j) K[r * kDof + j] = -K[r * kDof + 2 * D + j];
-    for (int i = 0; i < D; ++i)
-      for (int c = 0; c < kDof; ++c) K[i * kDof + c] = -K[(2 * D + i) * kDof + c];
-  }
 };
 
 using AncfCable2d = AncfCable<2>;

@@ -5,7 +5,7 @@
 // part's interface to other parts is exactly its first blocks: an end segment of a chain then ends
 // with its interface, see DofMap.cpp), takes the elements and couplings (rigid bodies, joints) whose
 // first block it owns, and computes the exact block preallocation of its rows. All blocks have `dim`
-// coordinates.
+// coordinates; an element has the blocks its kind lays out (Model::ElementGroup).
 #pragma once
 #include <petscmat.h>
 
@@ -29,11 +29,19 @@ public:
   PetscInt ownedBlocks() const { return _end - _begin; }
   // model block -> global block (replicated on every rank)
   const std::vector<PetscInt>& globalBlock() const { return _global; }
-  // elements (indices into Model::elements()) assembled by this rank
-  const std::vector<int>& localElements() const { return _localElements; }
-  // per local element: 4 ghosted-local block indices and 4 global block indices
-  const std::vector<PetscInt>& elementLocalBlocks() const { return _elLocal; }
-  const std::vector<PetscInt>& elementGlobalBlocks() const { return _elGlobal; }
+  // The elements of one group (Model::groups()) that this rank assembles: their indices in the group
+  // and, per element, `stride` ghosted-local and global block indices.
+  struct LocalGroup {
+    int group = 0;
+    int stride = 0;
+    std::vector<int> elements;
+    std::vector<PetscInt> localBlocks, globalBlocks;
+    int size() const { return static_cast<int>(elements.size()); }
+    const PetscInt* localBlocksOf(int k) const { return &localBlocks[static_cast<size_t>(k) * stride]; }
+    const PetscInt* globalBlocksOf(int k) const { return &globalBlocks[static_cast<size_t>(k) * stride]; }
+  };
+  // one per element group of the model, in its order
+  const std::vector<LocalGroup>& localGroups() const { return _localGroups; }
   // couplings (indices into Model::couplings()) assembled by this rank, and their blocks:
   // local coupling k has blocks [couplingOffset()[k], couplingOffset()[k + 1]) of the two lists
   const std::vector<int>& localCouplings() const { return _localCouplings; }
@@ -57,8 +65,9 @@ public:
 private:
   MPI_Comm _comm;
   PetscInt _bs = 0, _nGlobal = 0, _begin = 0, _end = 0;
-  std::vector<PetscInt> _global, _ghosts, _elLocal, _elGlobal;
-  std::vector<int> _localElements, _localCouplings;
+  std::vector<PetscInt> _global, _ghosts;
+  std::vector<LocalGroup> _localGroups;
+  std::vector<int> _localCouplings;
   std::vector<PetscInt> _cplOffset, _cplLocal, _cplGlobal;
   std::vector<PetscInt> _dnnz, _onnz;  // block preallocation of owned block rows
   // the vector createVector() duplicates, made on first use; shared by copies of the map

@@ -1,7 +1,9 @@
-// The discrete model built from a scene: bodies, DOF blocks, supports and loads. No PETSc here.
+// The discrete model built from a scene: bodies, DOF blocks, element groups, supports and loads.
+// No PETSc here.
 //
-// Every unknown belongs to a block of `dim` coordinates: a cable node owns a position block and a
-// slope block; a junction makes several bodies' nodes share one position block. Blocks are numbered
+// Every unknown belongs to a block of `dim` coordinates. A node of a body owns the blocks its element
+// kind lays out (elements::KindInfo::layout: the cable's position and slope, a shear beam's position,
+// r_x and r_y); a junction makes several bodies' nodes share one position block. Blocks are numbered
 // here in scene order ("model numbering"); DofMap renumbers them for the parallel layout.
 #pragma once
 #include <array>
@@ -9,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "strand/elements/CableSection.hpp"
 #include "strand/elements/Constraint.hpp"
+#include "strand/elements/ElementRegistry.hpp"
 #include "strand/model/HubMotion.hpp"
 #include "strand/model/SceneDescription.hpp"
 
@@ -22,16 +24,31 @@ struct PointMass {
   double mass;  // [kg]
 };
 
+// A flexible body: `elements` equal elements of one kind along its initial curve.
 struct Body {
   std::string name;
+  int kind = 0;  // elements::kindInfo(kind)
   int elements = 0;
   double length = 0.0, elementLength = 0.0;
-  elements::CableSection section;
-  std::vector<int> posBlock, slopeBlock;  // per node, model numbering
-  std::vector<double> slopeScale;         // per node: slope coordinates are sigma * dr/dx
-  std::vector<double> kappa0;             // 2D reference curvature per element x Gauss point (empty: straight)
+  elements::SectionValues section;             // the kind's section keys and options
+  elements::BeamProperties properties;         // EA, EI, rho A of the section
+  elements::BodyDiscretization discretization; // element length, slope scale, Gauss points
+  bool velocityDependent = false;              // its internal force depends on velocities (damping)
+  int blocksPerNode = 0;
+  std::vector<int> nodeBlocks;          // per node, blocksPerNode blocks in the kind's layout (model numbering)
+  std::vector<int> posBlock;            // per node: its position block
+  std::vector<double> referenceValues;  // stress_free: initial: kind-defined values per element (empty: none)
   std::vector<PointMass> pointMasses;
-  Vec3 loadPerLength{};                   // gravity rho A g plus distributed loads [N/m]
+  Vec3 loadPerLength{};                 // gravity rho A g plus distributed loads [N/m]
+
+  const elements::KindInfo& info() const { return elements::kindInfo(kind); }
+  int block(int node, int k) const { return nodeBlocks[node * blocksPerNode + k]; }
+  // the block a clamp holds with the position and a moment turns (the cable's slope, a beam's r_y)
+  int orientationBlock(int node) const { return block(node, info().orientationBlock); }
+  // gradient blocks carry gradientScale * dr/dx (AxialGradient) or dr/dy: the scale of block k
+  double blockScale(int k) const {
+    return info().layout[k] == elements::BlockRole::AxialGradient ? discretization.gradientScale : 1.0;
+  }
 };
 
 // A rigid body.
@@ -73,11 +90,15 @@ struct Coupling {
   std::vector<int> blocks;  // joint: multiplier blocks first, then the joint's blocks
 };
 
-// One element of the global element list: its body and its four blocks [r1, r1', r2, r2'].
-struct ElementRef {
-  int body;
-  int index;
-  std::array<int, 4> blocks;
+// The elements of one kind, over all bodies of that kind: per element its body, its index in the
+// body and its blocks (node 1's, then node 2's: blocksPerElement per element).
+struct ElementGroup {
+  int kind = 0;
+  int blocksPerElement = 0;
+  std::vector<int> body, index;
+  std::vector<int> blocks;
+  int size() const { return static_cast<int>(body.size()); }
+  const int* blocksOf(int e) const { return &blocks[static_cast<size_t>(e) * blocksPerElement]; }
 };
 
 // Scales of the first body for dimensionless input and output (seed 003): length L, rho A, E I,
@@ -95,8 +116,9 @@ struct TimedLoad {
   std::vector<double> values;
 };
 
+// A moment at a node, acting on its orientation block (Body::orientationBlock).
 struct NodalMomentLoad {
-  int slopeBlock;
+  int block;
   Vec3 moment;
 };
 
@@ -107,9 +129,12 @@ public:
   int dim() const { return _dim; }
   int numBlocks() const { return _numBlocks; }
   int numDofs() const { return _numBlocks * _dim; }
-  int gaussPoints() const { return _gaussPoints; }
   const std::vector<Body>& bodies() const { return _bodies; }
-  const std::vector<ElementRef>& elements() const { return _elements; }
+  // the elements, one group per element kind present
+  const std::vector<ElementGroup>& groups() const { return _groups; }
+  int numElements() const;
+  // whether some body's internal force depends on velocities (Kelvin-Voigt damping)
+  bool velocityDependent() const;
   // Reference coordinates q0 (model numbering): the initial shape, axially unstretched; the
   // unknowns are displacements u = q - q0.
   const std::vector<double>& initialCoordinates() const { return _q0; }
@@ -145,9 +170,20 @@ public:
   const ReferenceScales& scales() const { return _scales; }
 
 private:
-  int _dim = 3, _numBlocks = 0, _gaussPoints = 5;
+  struct Build;  // the scene and the name tables while the model is built (Model.cpp)
+  void addBodies(Build& b);
+  void mergeJunctions(Build& b);
+  void addRigidBodiesAndMultipliers(Build& b);
+  void placeInitialState(Build& b);
+  void addSupports(Build& b);
+  void addLoads(Build& b);
+  void addInitialVelocities(Build& b);
+  void addJointEquations(Build& b);
+  void addCouplings();
+
+  int _dim = 3, _numBlocks = 0;
   std::vector<Body> _bodies;
-  std::vector<ElementRef> _elements;
+  std::vector<ElementGroup> _groups;
   std::vector<double> _q0, _nodalForce;
   std::vector<char> _fixed, _multiplier;
   std::vector<RigidBody> _rigid;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "strand/elements/ElementKind.hpp"
 #include "strand/model/TimeFunction.hpp"
 
 namespace strand::model {
@@ -23,7 +24,6 @@ struct SourceMark {
 };
 
 enum class Analysis { Static, Modes, Dynamic };
-enum class ElementType { AncfCable2d, AncfCable3d };
 enum class GeometryKind { Line, Arc, Polyline, Catenary };
 
 struct GeometryDesc {
@@ -49,13 +49,12 @@ struct PointMassDesc {
 
 struct BodyDesc {
   std::string name;
-  ElementType type = ElementType::AncfCable3d;
+  int kind = 1;  // element kind: an index of elements::kindInfo (elements::findKind("AncfCable3d") = 1)
   int elements = 0;
   GeometryDesc geometry;
-  // section and material (SI)
-  double E = 0.0, A = 0.0, I = 0.0, rho = 0.0;
-  double dampAxial = 0.0, dampBending = 0.0;  // Kelvin-Voigt coefficients [s]
-  bool stressFreeInitial = false;             // true: the initial shape is stress free (2D only)
+  // the kind's section keys (SI) and formulation options, as the kind declares them (ElementKind.hpp)
+  elements::SectionValues section;
+  bool stressFreeInitial = false;  // true: the initial shape is stress free (kinds that allow it)
   std::vector<PointMassDesc> pointMasses;
   // initial velocity field of a rigid motion (dynamics): v = linear + angular x (r - center) for
   // positions, angular x r' for slopes; 2D: angular about z (angularVelocity[2])
@@ -86,7 +85,7 @@ enum class SupportType { Clamped, Pinned, Fixed };
 struct SupportDesc {
   NodeRef at;
   SupportType type = SupportType::Clamped;
-  std::vector<int> dofs;  // Fixed: node coordinate indices 0 .. 2*dim-1 (position first, then slope)
+  std::vector<int> dofs;  // Fixed: node coordinate indices 0 .. blocks per node * dim - 1, block by block
   HubDesc hub;            // clamped / pinned only
   SourceMark mark;
 };

@@ -1,0 +1,39 @@
+// The element kinds at run time, by index and by name: what the scene reader, the model and the
+// output need to know of a kind without its kernel (the kernels are in ElementKinds.hpp).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "strand/elements/ElementKind.hpp"
+
+namespace strand::elements {
+
+struct KindInfo {
+  const char* name = nullptr;
+  int dim = 0;
+  int blocksPerNode = 0;
+  const BlockRole* layout = nullptr;  // blocksPerNode roles; block 0 is the position
+  int orientationBlock = 0;           // the node block a clamp holds (with the position) and a moment turns
+  bool stressFreeInitial = false;     // accepts stress_free: initial
+  const SectionKey* sectionKeys = nullptr;
+  int sectionKeyCount = 0;
+  const OptionKey* options = nullptr;
+  int optionCount = 0;
+  BeamProperties (*properties)(const SectionValues&) = nullptr;
+  // whether the internal force depends on velocities (damping): the integrators' D matrix
+  bool (*velocityDependent)(const SectionValues&, const BodyDiscretization&) = nullptr;
+  // centerline position weights w (2 blocksPerNode) at eta in [0, 1]: r(eta) = sum_a w_a q_a
+  void (*interpolation)(const BodyDiscretization&, double eta, double* w) = nullptr;
+  // stress_free: initial: kind-defined reference values of `elements` elements from their initial
+  // coordinates q0 (elements x (2 blocksPerNode dim) values, element-major)
+  std::vector<double> (*referenceValues)(const SectionValues&, const BodyDiscretization&, const double* q0,
+                                         int elements) = nullptr;
+  int blocksPerElement() const { return 2 * blocksPerNode; }
+};
+
+int kindCount();
+const KindInfo& kindInfo(int kind);
+int findKind(const std::string& name);  // -1 when there is no such kind
+std::vector<std::string> kindNames();
+
+}  // namespace strand::elements

@@ -1,0 +1,42 @@
+// The assembly of the elements of one kind (internal to the Assembler): one object per element
+// group of the model, one virtual call per assembly pass (none per element). KernelFamily<K>
+// (KernelFamily.hpp) implements it for every kind K of elements::AllKinds.
+//
+// All arrays are ghosted-local forms (model::DofMap): x displacements u = q - q0, v velocities
+// (null: none), r a zeroed local residual that the Assembler sums over ranks afterwards. Matrices
+// get element blocks with the rows and columns of supported DOFs (`fixed`, per local DOF) zeroed.
+#pragma once
+#include <petscmat.h>
+
+#include <memory>
+#include <vector>
+
+#include "strand/model/DofMap.hpp"
+#include "strand/model/Model.hpp"
+
+namespace strand::assembly {
+
+class ElementFamily {
+public:
+  virtual ~ElementFamily() = default;
+  // r += f_int(x, v) - loadFactor (distributed loads and point-mass weights), and the centrifugal
+  // load of a rotating frame (scaled by loadFactor as the other loads).
+  virtual void residual(const double* x, const double* v, double loadFactor, double* r) const = 0;
+  // J += K (and the rotating frame's softening -loadFactor Omega^2 M_P).
+  virtual PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const = 0;
+  // J += K + shiftV D + shiftA M; Dmat (if not null) += D.
+  virtual PetscErrorCode dynamicJacobian(const double* x, const double* v, double shiftV, double shiftA, Mat J,
+                                         Mat Dmat, const std::vector<char>& fixed) const = 0;
+  // M += the consistent mass with point masses.
+  virtual PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const = 0;
+  // G += 2 Omega (m (x) [e]x): the Coriolis matrix of the rotating frame.
+  virtual PetscErrorCode gyroscopic(Mat G, const std::vector<char>& fixed) const = 0;
+  virtual double strainEnergy(const double* x) const = 0;
+};
+
+// The family of the model's element group `local.group` (its kind's KernelFamily).
+std::unique_ptr<ElementFamily> makeElementFamily(const model::Model& model, const model::DofMap& dofs,
+                                                 const model::DofMap::LocalGroup& local,
+                                                 const std::vector<double>& q0Local);
+
+}  // namespace strand::assembly
