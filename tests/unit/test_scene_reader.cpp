@@ -1149,3 +1149,73 @@ TEST(SceneReader, HubBeamErrors) {
   // ordinary scenes still need dimension and bodies
   EXPECT_TRUE(failsWith("analysis: static\nbodies: []\n", 1, "dimension", "missing required value"));
 }
+
+// Element kinds: the scene's `element` picks the kind per body; its `section` keys and its
+// `formulation` options are the kind's (elements::KindInfo), checked with file:line:key.
+namespace {
+const std::string kShear2d =
+    "analysis: static\n"                                                          // 1
+    "dimension: 2\n"                                                              // 2
+    "bodies:\n"                                                                   // 3
+    "  - name: belt\n"                                                            // 4
+    "    element: AncfBeam2dShear\n"                                              // 5
+    "    elements: 8\n"                                                           // 6
+    "    geometry: {kind: line, start: [0, 0], end: [1, 0]}\n"                    // 7
+    "    section: {E: 2.1e11, nu: 0.3, rho: 7850, width: 0.1, height: 0.02}\n"   // 8
+    "    formulation: {integration: full}\n"                                      // 9
+    "  - name: rope\n"                                                            // 10
+    "    element: AncfCable2d\n"                                                  // 11
+    "    elements: 4\n"                                                           // 12
+    "    geometry: {kind: line, start: [1, 0], end: [2, 0]}\n"                    // 13
+    "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}\n"              // 14
+    "junctions:\n"                                                                // 15
+    "  - nodes: [{body: belt, node: last}, {body: rope, node: 0}]\n"              // 16
+    "supports:\n"                                                                 // 17
+    "  - {body: belt, node: 0, type: clamped}\n";                                 // 18
+}  // namespace
+
+TEST(SceneReader, ElementKindsMixInOneSceneWithTheirOwnSectionsAndOptions) {
+  const SceneDescription s = parseScene(kShear2d, "scene.yaml");
+  ASSERT_EQ(s.bodies.size(), 2u);
+  const BodyDesc& belt = s.bodies[0];
+  EXPECT_EQ(belt.kind, elements::findKind("AncfBeam2dShear"));
+  EXPECT_EQ(s.bodies[1].kind, elements::findKind("AncfCable2d"));
+  EXPECT_DOUBLE_EQ(belt.section.number("height"), 0.02);
+  EXPECT_DOUBLE_EQ(belt.section.number("nu"), 0.3);
+  EXPECT_DOUBLE_EQ(belt.section.number("damping"), 0.0);  // optional keys take their defaults
+  EXPECT_EQ(belt.section.option("integration"), "full");
+  EXPECT_EQ(belt.section.option("elasticity"), "decoupled");  // the first value is the default
+  const std::string linear = edit(edit(kShear2d, "AncfBeam2dShear", "AncfBeam2dLinear"), "    formulation: {integration: full}\n", "");
+  EXPECT_EQ(parseScene(linear, "scene.yaml").bodies[0].section.option("integration"), "selective");
+  // a point mass ratio is relative to the kind's rho A (here rho width height)
+  const SceneDescription pm = parseScene(
+      edit(kShear2d, "    formulation: {integration: full}\n",
+           "    formulation: {integration: full}\n    point_masses: [{location: 1, mass_ratio: 2}]\n"),
+      "scene.yaml");
+  EXPECT_NEAR(pm.bodies[0].pointMasses[0].mass, 2.0 * 7850 * 0.1 * 0.02 * 1.0, 1e-9);
+}
+
+TEST(SceneReader, ElementKindErrorsNameTheKindsKeysAndValues) {
+  EXPECT_TRUE(failsWith(edit(kShear2d, "AncfBeam2dShear", "AncfBeam2dTimoshenko"), 5, "bodies[0].element",
+                        "unknown element type 'AncfBeam2dTimoshenko'; allowed: AncfCable2d, AncfCable3d, AncfBeam2dShear, "
+                        "AncfBeam2dLinear"));
+  EXPECT_TRUE(failsWith(edit(kShear2d, "dimension: 2", "dimension: 3"), 5, "bodies[0].element",
+                        "AncfBeam2dShear needs dimension: 2"));
+  EXPECT_TRUE(failsWith(edit(kShear2d, "nu: 0.3,", "nu: 0.3, A: 1,"), 8, "bodies[0].section.A",
+                        "unknown key; allowed: E, nu, rho, width, height, shear_factor, damping"));
+  EXPECT_TRUE(failsWith(edit(kShear2d, "nu: 0.3", "nu: 0.5"), 8, "bodies[0].section.nu", "must be in [0, 0.5) (got 0.5)"));
+  EXPECT_TRUE(failsWith(edit(kShear2d, "height: 0.02", "height: 0"), 8, "bodies[0].section.height", "must be positive"));
+  EXPECT_TRUE(failsWith(edit(kShear2d, "width: 0.1, ", ""), 8, "bodies[0].section.width", "missing required value"));
+  EXPECT_TRUE(failsWith(edit(kShear2d, "integration: full", "integration: exact"), 9,
+                        "bodies[0].formulation.integration", "unknown integration 'exact'; allowed: selective, full, reduced"));
+  EXPECT_TRUE(failsWith(edit(kShear2d, "integration: full", "poisson: off"), 9, "bodies[0].formulation.poisson",
+                        "unknown key; allowed: integration, elasticity"));
+  EXPECT_TRUE(failsWith(edit(kShear2d, "rho: 7850}\njunctions", "rho: 7850}\n    formulation: {integration: full}\njunctions"),
+                        15, "bodies[1].formulation", "AncfCable2d has no formulation options"));
+  EXPECT_TRUE(failsWith(edit(kShear2d, "    formulation: {integration: full}\n", "    stress_free: initial\n"), 9,
+                        "bodies[0].stress_free", "'initial' is not available for AncfBeam2dShear"));
+  // a node of the Shear kind has 3 blocks (r, r_x, r_y): fixed coordinates 0..5; the cable's 0..3
+  EXPECT_NO_THROW(parseScene(edit(kShear2d, "type: clamped}", "type: fixed, dofs: [0, 1, 4, 5]}"), "scene.yaml"));
+  EXPECT_TRUE(failsWith(edit(kShear2d, "{body: belt, node: 0, type: clamped}", "{body: rope, node: 2, type: fixed, dofs: [4]}"),
+                        18, "supports[0].dofs[0]", "must be 0..3 (got 4)"));
+}

@@ -41,7 +41,7 @@ struct CubicCenterline {
   static constexpr BlockRole kNodeLayout[3] = {BlockRole::Position, BlockRole::AxialGradient,
                                                BlockRole::TransverseGradient};
   static constexpr int kOrientationBlock = 2;
-  static constexpr int kPoints[3] = {5, 3, 2};  // full (exact), reduced, selective mean shear
+  static constexpr int kPoints[3] = {5, 3, 3};  // full (exact), reduced, selective mean shear
   // N_c, dN_c/dx and N_d at eta (gradient slots scaled by l / sigma, as the cable's slopes)
   static void shapes(double eta, double l, double sigma, double Nc[6], double dNc[6], double Nd[6], double dNd[6]) {
     const math::HermiteValues h = math::hermite(eta);
