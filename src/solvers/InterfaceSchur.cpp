@@ -82,7 +82,7 @@ PetscErrorCode findInterface(SchurData* d, Mat P) {
     PetscCall(MatGetRowIJ(Ao, 0, PETSC_FALSE, blocked, &n, &ia, &ja, &done));
     PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "PC %s: no row structure of the off-process block",
                kPcInterfaceSchur);
-    const PetscInt rowsPerEntry = rows / n;  // bs for BAIJ's block rows, 1 for AIJ
+    const PetscInt rowsPerEntry = n > 0 ? rows / n : bs;  // bs for BAIJ's block rows, 1 for AIJ; a rank may own none
     for (PetscInt r = 0; r < n; ++r)
       if (ia[r + 1] > ia[r]) onInterface[r * rowsPerEntry / bs] = 1;
     PetscCall(MatRestoreRowIJ(Ao, 0, PETSC_FALSE, blocked, &n, &ia, &ja, &done));

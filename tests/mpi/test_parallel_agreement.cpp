@@ -270,3 +270,11 @@ TEST(ParallelAgreement, MixedElementKindsBoomRopeAndBlock) {
   std::printf("mixed scene at t = 0.2 s: max difference distributed vs serial %.2e\n", diff);
   EXPECT_LT(diff, 1e-9);
 }
+
+// A model smaller than the ranks: one element, whose blocks METIS gives to one rank; the other owns
+// none (the parallel direct solve divided by its zero row count: SIGFPE before).
+TEST(ParallelAgreement, OneElementLeavesARankWithoutRows) {
+  auto sc = cantilever(2, 1, 1.0);
+  addTipLoad(sc, {0, -100.0, 0});
+  expectAgreement(sc, 1, 1.0);
+}
