@@ -83,6 +83,12 @@ int Model::numElements() const {
   return n;
 }
 
+bool Model::constantMass() const {
+  for (const Body& b : _bodies)
+    if (!b.info().constantMass) return false;
+  return true;
+}
+
 bool Model::velocityDependent() const {
   for (const Body& b : _bodies)
     if (b.velocityDependent) return true;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <sstream>
 
 #include "strand/solvers/AdamsBashforthMoulton.hpp"
@@ -18,6 +19,9 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   const model::DofMap& dofs = assembler.dofs();
   MPI_Comm comm = dofs.comm();
   _damped = assembler.model().velocityDependent();
+  // every integrator here keeps M from the reference state (kinds with M(q) need M(q) a and dM/dq a)
+  if (!assembler.model().constantMass())
+    throw std::logic_error("Dynamics: an element kind with a configuration-dependent mass; the integrators assume a constant one");
   _moving = assembler.model().hasPrescribedMotion();
   _constrained = assembler.hasConstraints();
   for (const model::Body& b : assembler.model().bodies()) _energyFloor += 1e-12 * b.properties.EA * b.length;

@@ -85,6 +85,7 @@ public:
   static constexpr const BlockRole* kNodeLayout = Centerline::kNodeLayout;
   static constexpr int kOrientationBlock = Centerline::kOrientationBlock;  // r_y: the cross-section
   static constexpr bool kStressFreeInitial = false;
+  static constexpr bool kConstantMass = true;
   static constexpr SectionKey kSectionKeys[] = {
       {"E", "Young's modulus [Pa]", true, 0.0, 0.0, false, kNoLimit},
       {"nu", "Poisson's ratio", false, 0.0, 0.0, true, 0.5},

@@ -227,6 +227,7 @@ public:
   static constexpr BlockRole kNodeLayout[kBlocksPerNode] = {BlockRole::Position, BlockRole::AxialGradient};
   static constexpr int kOrientationBlock = 1;          // a clamp holds the slope; a moment turns it
   static constexpr bool kStressFreeInitial = D == 2;   // stress_free: initial (reference curvature)
+  static constexpr bool kConstantMass = true;
   static constexpr SectionKey kSectionKeys[] = {
       {"E", "Young's modulus [Pa]", true, 0.0, 0.0, false, kNoLimit},
       {"A", "cross-section area [m^2]", true, 0.0, 0.0, false, kNoLimit},

@@ -135,6 +135,8 @@ public:
   int numElements() const;
   // whether some body's internal force depends on velocities (Kelvin-Voigt damping)
   bool velocityDependent() const;
+  // whether every body's mass matrix is constant (the integrators and the compact mass need it)
+  bool constantMass() const;
   // Reference coordinates q0 (model numbering): the initial shape, axially unstretched; the
   // unknowns are displacements u = q - q0.
   const std::vector<double>& initialCoordinates() const { return _q0; }
