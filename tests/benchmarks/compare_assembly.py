@@ -8,7 +8,7 @@ OLD_BENCH and NEW_BENCH are bench_assembly binaries of the two builds (build the
 worktree of the commit before: git worktree add --detach ../base <commit>; cmake --build
 ../base/build --target bench_assembly). Each round runs old then new (alternating which goes
 first) at each size; per round the ratio new/old of the AncfCable3d residual + tangent time per
-element. Prints one JSON line per size with the median ratio, the range of the ratios, and each
+element (builds older than -min_elements run every size from 1e3 up: the record of size n is taken). Prints one JSON line per size with the median ratio, the range of the ratios, and each
 build's own spread (max/min over rounds): when the spread is wider than the gap, noise decides.
 """
 import argparse
@@ -23,9 +23,9 @@ def run(binary, n):
     for line in out.splitlines():
         if line.startswith("{"):
             r = json.loads(line)
-            if r.get("element") == "AncfCable3d":
+            if r.get("element") == "AncfCable3d" and r.get("elements") == n:
                 return r["residual_plus_tangent_us_per_element"]
-    raise SystemExit(f"{binary}: no AncfCable3d record")
+    raise SystemExit(f"{binary}: no AncfCable3d record with {n} elements")
 
 
 def main():
