@@ -254,6 +254,9 @@ void Model::placeInitialState(Build& build) {
             q[0] = -p.t[1];
             q[1] = p.t[0];
             break;
+          case elements::BlockRole::MaterialCoordinate:  // the unstretched arc length from node 0; padding 0
+            q[0] = n * b.elementLength;
+            break;
           case elements::BlockRole::Position:
             throw std::logic_error("Model: one position block per node");
         }

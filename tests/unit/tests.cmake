@@ -1,6 +1,7 @@
 strand_test(NAME unit_math SOURCES unit/test_math.cpp LABELS unit)
 strand_test(NAME unit_ancf_cable SOURCES unit/test_ancf_cable.cpp LABELS unit)
 strand_test(NAME unit_element_kinds SOURCES unit/test_element_kinds.cpp LABELS unit)
+strand_test(NAME unit_ale_cable SOURCES unit/test_ale_cable.cpp LABELS unit)
 strand_test(NAME unit_elastica_reference SOURCES unit/test_elastica_reference.cpp LABELS unit)
 strand_test(NAME unit_output_writer SOURCES unit/test_output_writer.cpp LABELS unit)
 strand_test(NAME unit_scene_reader SOURCES unit/test_scene_reader.cpp LABELS unit)

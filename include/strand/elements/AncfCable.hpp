@@ -562,6 +562,9 @@ private:
     }
   }
 
+public:
+  // ---- the pointwise law (also used by the ALE cable, AleCable.hpp) ----
+
   // Pointwise generalized force f_G = N de/dG + m . dkappa/dG, with dkappa_i/dG = A dc_i/dG -
   // 3 c_i B (r', 0) (A = s^-3/2, B = s^-5/2, s = r'.r'). The sum over the curvature components
   // collapses: sum_i m_i dc_i/dG = (r'' x m, m x r') for c = r' x r'' (2D: m along z), so

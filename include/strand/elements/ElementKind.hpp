@@ -20,6 +20,8 @@ enum class BlockRole {
   Position,            // r: the node's position (junctions share it, pins hold it, forces act on it)
   AxialGradient,       // r_x = dr/dx along the reference arc length (the cable's slope)
   TransverseGradient,  // r_y = dr/dy across the section (a shear-deformable beam's cross-section vector)
+  MaterialCoordinate,  // p: the material (unstretched arc-length) coordinate of an ALE node, in component 0;
+                       // the other components are padding, held at zero
 };
 
 inline constexpr double kNoLimit = std::numeric_limits<double>::infinity();

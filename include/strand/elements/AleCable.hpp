@@ -1,0 +1,451 @@
+// Variable-length ANCF cable in the arbitrary Lagrangian-Eulerian description: AleCable2d,
+// AleCable3d (the VLBE of Hong, Tang & Ren, J. Fluids Struct. 27 (2011); seed 000 sec. 2-3 without
+// the spin angle).
+//
+// Each node carries its position r, its slope r' = dr/dp and its material coordinate p, the
+// unstretched arc length of the material point at the node (seed 000 Eq. 16, 49). An element spans
+// the material interval [p1, p2], of unstretched length L = p2 - p1 (Eq. 3), which changes when
+// material flows through the nodes; with p1, p2 fixed it is the Lagrangian cable (AncfCable).
+// Element slots: r1, r1', p1, r2, r2', p2, each a block of D coordinates; p sits in component 0
+// of its block, the other components are padding held at zero (unit rows, like the unused
+// coordinate of a 2D rigid body).
+//
+// Position at xi = (p - p1) / L in [0, 1] (Eq. 2, 4-5 on [0, 1]): r = sum_a N_a(xi, L) q_a with the
+// cubic Hermite N = (h0, L h1, h2, L h3) on (r1, r1', r2, r2'). So
+//   r' = (h0' r1 + h2' r2) / L + h1' r1' + h3' r2',   r'' = (h0'' r1 + h2'' r2) / L^2 + (h1'' r1' + h3'' r2') / L.
+//
+// Elastic energy (Eq. 21-22, 31, 37): U = int_{p1}^{p2} W(r', r'') dp = L sum_g w_g W(G_g) at fixed
+// Gauss points xi_g, with the cable's W = EA eps^2 / 2 + EI kappa^2 / 2 and eps = (r'.r' - 1)/2
+// measured from the unstretched material (p is arc length of the unstretched cable). Its
+// derivatives in p1, p2 go through L: dU/dL = sum_g w_g W + L sum_g w_g f_G . G_L.
+//
+// Inertia (Eq. 13-17, 27-29): the velocity of the material point p is
+//   rdot = sum_a N_a v_a + phi_xi xidot + phi_L Ldot,   xidot = -((1 - xi) p1dot + xi p2dot) / L,
+// with phi_xi = dr/dxi and phi_L = dr/dL at fixed q (the slopes' L weights); its acceleration
+//   rddot = sum_a N_a a_a + phi_xi xiddot + phi_L Lddot + 2 phi_xi(v) xidot + 2 phi_L(v) Ldot
+//           + phi_xixi xidot^2 + 2 phi_xiL xidot Ldot,   xiddot = -(p1ddot + 2 xidot Ldot + xi Lddot) / L
+// (phi(v): the same derivatives of the interpolated velocities). The generalized inertial force
+// is F = rho A int S^T rddot dp with S = d rdot / d qdot (Eq. 15, 27): F = M(q) a + Q_p(q, v),
+// M = rho A int S^T S dp (Eq. 28) and Q_p the mass-transport force (Eq. 29), all evaluated here
+// pointwise with exact derivatives in q, v and a (inertiaTangent).
+#pragma once
+#include <cmath>
+
+#include "strand/elements/AncfCable.hpp"
+#include "strand/elements/ElementKind.hpp"
+#include "strand/math/Gauss.hpp"
+#include "strand/math/Hermite.hpp"
+
+namespace strand::elements {
+
+template <int D>
+class AleCable final {
+  using Cable = AncfCable<D>;
+
+public:
+  static constexpr int kDim = D;
+  static constexpr int kBlocksPerNode = 3;
+  static constexpr int kBlocks = 6;  // r1, r1', p1, r2, r2', p2
+  static constexpr int kDof = kBlocks * D;
+  static constexpr int kG = 2 * D;  // G = (r', r'')
+  static constexpr int kP1 = 2 * D, kP2 = 5 * D;  // element indices of p1 and p2
+  // element index of the cable slot k (0 r1, 1 r1', 2 r2, 3 r2')
+  static constexpr int slotIndex(int k) { return (k < 2 ? k : k + 1) * D; }
+
+  // ---- the element-kind contract (ElementKind.hpp) ----
+  static constexpr const char* kName = D == 2 ? "AleCable2d" : "AleCable3d";
+  static constexpr BlockRole kNodeLayout[kBlocksPerNode] = {BlockRole::Position, BlockRole::AxialGradient,
+                                                           BlockRole::MaterialCoordinate};
+  static constexpr int kOrientationBlock = 1;
+  static constexpr bool kStressFreeInitial = false;
+  static constexpr bool kConstantMass = false;  // M(q): the inertia is the element's (inertia, inertiaTangent)
+  static constexpr SectionKey kSectionKeys[] = {
+      {"E", "Young's modulus [Pa]", true, 0.0, 0.0, false, kNoLimit},
+      {"A", "cross-section area [m^2]", true, 0.0, 0.0, false, kNoLimit},
+      {"I", "second moment of area [m^4]", true, 0.0, 0.0, false, kNoLimit},
+      {"rho", "density [kg/m^3]", true, 0.0, 0.0, false, kNoLimit},
+  };
+  static constexpr int kOptionCount = 0;
+  static constexpr OptionKey kOptions[1] = {{nullptr, nullptr, {nullptr}}};
+
+  struct Body {
+    CableSection section;
+    math::QuadratureRule elastic, inertial;  // the elastic rule (gauss_points) and 4 points for the inertia
+  };
+  struct Element {
+    const Body* body = nullptr;
+  };
+
+  static BeamProperties properties(const SectionValues& v) {
+    return {v.number("E") * v.number("A"), v.number("E") * v.number("I"), v.number("rho") * v.number("A")};
+  }
+  static Body body(const SectionValues& v, const BodyDiscretization& d) {
+    Body b;
+    b.section = {v.number("E") * v.number("A"), v.number("E") * v.number("I"), v.number("rho") * v.number("A"), 0.0, 0.0};
+    b.elastic = math::gaussLegendre(d.gaussPoints);
+    b.inertial = math::gaussLegendre(4);
+    return b;
+  }
+  static Element element(const Body& b, const double*) { return Element{&b}; }
+  static bool velocityDependent(const Body&) { return false; }  // no damping yet; the inertia is separate
+
+  // ---- elastic force and tangent ----
+
+  template <class S>
+  static void force(const Body& b, const Element&, const double* q0, const S* u, const S*, S* f) {
+    S q[kDof];
+    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], f[k] = S(0.0);
+    const S L = q[kP2] - q[kP1];
+    S fL(0.0);
+    for (int g = 0; g < b.elastic.size(); ++g) {
+      Coefficients<S> c(b.elastic.x[g], L);
+      S G[kG], fG[kG];
+      c.gather(q, G);
+      const S W = energyDensity(b.section, G);
+      S eps(0.0);
+      for (int i = 0; i < D; ++i) eps += 0.5 * G[i] * G[i];
+      Cable::pointForce(b.section, 0.0, eps - 0.5, G, static_cast<const S*>(nullptr), fG);
+      const S wl = b.elastic.w[g] * L;
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < D; ++i) f[slotIndex(k) + i] += wl * (c.B1[k] * fG[i] + c.B2[k] * fG[D + i]);
+      S GL[kG];
+      c.gatherL(q, GL);
+      S dot(0.0);
+      for (int k = 0; k < kG; ++k) dot += fG[k] * GL[k];
+      fL += b.elastic.w[g] * (W + L * dot);
+    }
+    f[kP1] = -fL;
+    f[kP2] = fL;
+  }
+
+  static void tangent(const Body& b, const Element& e, const double* q0, const double* u, const double* v, double* f,
+                      double* K, double* Dm) {
+    double q[kDof];
+    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k];
+    for (int k = 0; k < kDof * kDof; ++k) {
+      K[k] = 0.0;
+      if (Dm) Dm[k] = 0.0;
+    }
+    if (f) force(b, e, q0, u, v, f);
+    const double L = q[kP2] - q[kP1];
+    double KqL[4][D] = {}, KLL = 0.0;
+    for (int g = 0; g < b.elastic.size(); ++g) {
+      Coefficients<double> c(b.elastic.x[g], L);
+      double G[kG], GL[kG], GLL[kG], fG[kG], KG[kG][kG], DG[kG][kG];
+      c.gather(q, G);
+      c.gatherL(q, GL);
+      c.gatherLL(q, GLL);
+      double eps = 0.0;
+      for (int i = 0; i < D; ++i) eps += 0.5 * G[i] * G[i];
+      Cable::pointTangent(b.section, 0.0, eps - 0.5, G, nullptr, fG, KG, DG);
+      const double w = b.elastic.w[g], wl = w * L;
+      double KGL[kG] = {}, fGL = 0.0, fGLL = 0.0, GLKGL = 0.0;  // K_G G_L, f_G.G_L, f_G.G_LL, G_L.K_G.G_L
+      for (int m = 0; m < kG; ++m) {
+        for (int n = 0; n < kG; ++n) KGL[m] += KG[m][n] * GL[n];
+        fGL += fG[m] * GL[m];
+        fGLL += fG[m] * GLL[m];
+      }
+      for (int m = 0; m < kG; ++m) GLKGL += GL[m] * KGL[m];
+      // K_qq: the cable's tangent with the current L
+      for (int a = 0; a < 4; ++a)
+        for (int bb = 0; bb < 4; ++bb)
+          for (int i = 0; i < D; ++i)
+            for (int j = 0; j < D; ++j) {
+              const double kij = c.B1[a] * (KG[i][j] * c.B1[bb] + KG[i][D + j] * c.B2[bb]) +
+                                 c.B2[a] * (KG[D + i][j] * c.B1[bb] + KG[D + i][D + j] * c.B2[bb]);
+              K[(slotIndex(a) + i) * kDof + slotIndex(bb) + j] += wl * kij;
+            }
+      // K_qL = w f_G . B_a + w L (B_a^T K_G G_L + f_G . dB_a/dL)
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < D; ++i)
+          KqL[a][i] += w * (c.B1[a] * fG[i] + c.B2[a] * fG[D + i]) +
+                       wl * (c.B1[a] * KGL[i] + c.B2[a] * KGL[D + i] + c.dB1[a] * fG[i] + c.dB2[a] * fG[D + i]);
+      // K_LL = 2 w f_G . G_L + w L (G_L^T K_G G_L + f_G . G_LL)
+      KLL += 2.0 * w * fGL + wl * (GLKGL + fGLL);
+    }
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < D; ++i) {
+        const int r = slotIndex(a) + i;
+        K[r * kDof + kP2] += KqL[a][i];
+        K[r * kDof + kP1] -= KqL[a][i];
+        K[kP2 * kDof + r] += KqL[a][i];
+        K[kP1 * kDof + r] -= KqL[a][i];
+      }
+    K[kP1 * kDof + kP1] += KLL;
+    K[kP2 * kDof + kP2] += KLL;
+    K[kP1 * kDof + kP2] -= KLL;
+    K[kP2 * kDof + kP1] -= KLL;
+  }
+
+  template <class S>
+  static S strainEnergy(const Body& b, const Element&, const double* q0, const S* u) {
+    S q[kDof];
+    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k];
+    const S L = q[kP2] - q[kP1];
+    S U(0.0);
+    for (int g = 0; g < b.elastic.size(); ++g) {
+      Coefficients<S> c(b.elastic.x[g], L);
+      S G[kG];
+      c.gather(q, G);
+      U += b.elastic.w[g] * L * energyDensity(b.section, G);
+    }
+    return U;
+  }
+
+  // ---- inertia: F = M(q) a + Q_p(q, v) ----
+
+  template <class S>
+  static void inertia(const Body& b, const Element&, const double* q0, const S* u, const S* v, const S* a, S* F) {
+    S q[kDof];
+    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], F[k] = S(0.0);
+    const S L = q[kP2] - q[kP1];
+    for (int g = 0; g < b.inertial.size(); ++g) {
+      const double xi = b.inertial.x[g];
+      Point<S> pt(xi, q, v, a, L);
+      const S scale = b.inertial.w[g] * L * b.section.rhoA;
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < D; ++i) F[slotIndex(k) + i] += scale * pt.N[k] * pt.rdd[i];
+      S s1(0.0), s2(0.0);
+      for (int i = 0; i < D; ++i) {
+        s1 += pt.Sp1[i] * pt.rdd[i];
+        s2 += pt.Sp2[i] * pt.rdd[i];
+      }
+      F[kP1] += scale * s1;
+      F[kP2] += scale * s2;
+    }
+  }
+
+  // Kinetic energy 1/2 int rho A |rdot|^2 dp = 1/2 v^T M(q) v.
+  template <class S>
+  static S kineticEnergy(const Body& b, const double* q0, const S* u, const S* v) {
+    S q[kDof], zero[kDof];
+    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], zero[k] = S(0.0);
+    const S L = q[kP2] - q[kP1];
+    S T(0.0);
+    for (int g = 0; g < b.inertial.size(); ++g) {
+      Point<S> pt(b.inertial.x[g], q, v, zero, L);
+      S rd2(0.0);
+      for (int i = 0; i < D; ++i) rd2 += pt.rd[i] * pt.rd[i];
+      T += 0.5 * b.inertial.w[g] * L * b.section.rhoA * rd2;
+    }
+    return T;
+  }
+
+  // The inertia's derivatives: M = dF/da, C = dF/dv, Kq = dF/du (row-major kDof x kDof); F optional.
+  static void inertiaTangent(const Body& b, const Element& e, const double* q0, const double* u, const double* v,
+                             const double* a, double* F, double* M, double* C, double* Kq) {
+    if (F) inertia(b, e, q0, u, v, a, F);
+    double q[kDof];
+    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k];
+    for (int k = 0; k < kDof * kDof; ++k) M[k] = C[k] = Kq[k] = 0.0;
+    const double L = q[kP2] - q[kP1];
+    for (int g = 0; g < b.inertial.size(); ++g) {
+      const double xi = b.inertial.x[g];
+      const Point<double> pt(xi, q, v, a, L);
+      const double wr = b.inertial.w[g] * b.section.rhoA, scale = wr * L;
+      // S as columns over the element: s[col][i]
+      double Sc[kDof][D] = {};
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < D; ++i) Sc[slotIndex(k) + i][i] = pt.N[k];
+      for (int i = 0; i < D; ++i) {
+        Sc[kP1][i] = pt.Sp1[i];
+        Sc[kP2][i] = pt.Sp2[i];
+      }
+      // d rdd / dq (D x kDof) and d rdd / dv, and dS/dq applied to rdd (kDof x kDof)
+      double dRq[D][kDof] = {}, dRv[D][kDof] = {}, dSr[kDof][kDof] = {};
+      pt.derivatives(xi, q, v, a, dRq, dRv, dSr);
+      for (int r = 0; r < kDof; ++r)
+        for (int c = 0; c < kDof; ++c) {
+          double m = 0.0, cv = 0.0, kq = 0.0;
+          for (int i = 0; i < D; ++i) {
+            m += Sc[r][i] * Sc[c][i];
+            cv += Sc[r][i] * dRv[i][c];
+            kq += Sc[r][i] * dRq[i][c];
+          }
+          M[r * kDof + c] += scale * m;
+          C[r * kDof + c] += scale * cv;
+          Kq[r * kDof + c] += scale * (kq + dSr[r][c]);
+        }
+      // the factor L: dF/dp = +- w rho A S^T rdd
+      for (int r = 0; r < kDof; ++r) {
+        double sr = 0.0;
+        for (int i = 0; i < D; ++i) sr += Sc[r][i] * pt.rdd[i];
+        Kq[r * kDof + kP2] += wr * sr;
+        Kq[r * kDof + kP1] -= wr * sr;
+      }
+    }
+  }
+
+  // ---- the remaining contract members ----
+
+  // The mass at the reference state is not used (kConstantMass = false): inertia() is the element's.
+  static void slotMass(const Body&, double* m) {
+    for (int k = 0; k < kBlocks * kBlocks; ++k) m[k] = 0.0;
+  }
+  // Centerline position at eta of an element of length l (the material coordinates at rest).
+  static void interpolation(const BodyDiscretization& d, double eta, double* w) {
+    const math::HermiteValues h = math::hermite(eta);
+    const double l = d.elementLength, ww[kBlocks] = {h.s[0], l * h.s[1], 0.0, h.s[2], l * h.s[3], 0.0};
+    for (int k = 0; k < kBlocks; ++k) w[k] = ww[k];
+  }
+  static void consistentLoad(const Body&, const double*, double* f) {
+    for (int k = 0; k < kDof; ++k) f[k] = 0.0;  // distributed loads on ALE bodies: the element's (not yet)
+  }
+  static int referenceValueCount(const Body&) { return 0; }
+  static void referenceValues(const Body&, const double*, double*) {}
+
+private:
+  // W = EA eps^2 / 2 + EI kappa^2 / 2 with eps = (r'.r' - 1)/2 (absolute: p is unstretched arc length).
+  template <class S>
+  static S energyDensity(const CableSection& sec, const S* G) {
+    S s(0.0);
+    for (int i = 0; i < D; ++i) s += G[i] * G[i];
+    const S eps = 0.5 * (s - 1.0);
+    S kap[Cable::kCurv], k2(0.0);
+    Cable::curvature(G, kap);
+    for (int i = 0; i < Cable::kCurv; ++i) k2 += kap[i] * kap[i];
+    return 0.5 * sec.EA * eps * eps + 0.5 * sec.EI * k2;
+  }
+
+  // The slot coefficients of r' (B1) and r'' (B2) at xi for the length L, and their L-derivatives.
+  template <class S>
+  struct Coefficients {
+    S B1[4], B2[4], dB1[4], dB2[4], ddB1[4], ddB2[4];
+    Coefficients(double xi, const S& L) {
+      const math::HermiteValues h = math::hermite(xi);
+      const S L2 = L * L, L3 = L2 * L, L4 = L3 * L;
+      for (int k = 0; k < 4; ++k) {
+        const bool pos = k % 2 == 0;
+        B1[k] = pos ? S(h.ds[k]) / L : S(h.ds[k]);
+        B2[k] = pos ? S(h.dds[k]) / L2 : S(h.dds[k]) / L;
+        dB1[k] = pos ? -S(h.ds[k]) / L2 : S(0.0);
+        dB2[k] = pos ? -2.0 * S(h.dds[k]) / L3 : -S(h.dds[k]) / L2;
+        ddB1[k] = pos ? 2.0 * S(h.ds[k]) / L3 : S(0.0);
+        ddB2[k] = pos ? 6.0 * S(h.dds[k]) / L4 : 2.0 * S(h.dds[k]) / L3;
+      }
+    }
+    template <class Q>
+    void combine(const S* c1, const S* c2, const Q* q, S* G) const {
+      for (int i = 0; i < D; ++i) {
+        G[i] = S(0.0);
+        G[D + i] = S(0.0);
+        for (int k = 0; k < 4; ++k) {
+          G[i] += c1[k] * q[slotIndex(k) + i];
+          G[D + i] += c2[k] * q[slotIndex(k) + i];
+        }
+      }
+    }
+    template <class Q> void gather(const Q* q, S* G) const { combine(B1, B2, q, G); }
+    template <class Q> void gatherL(const Q* q, S* G) const { combine(dB1, dB2, q, G); }
+    template <class Q> void gatherLL(const Q* q, S* G) const { combine(ddB1, ddB2, q, G); }
+  };
+
+  // One material point xi of the element: its velocity and acceleration (seed 000 Eq. 13-17), the
+  // columns S_p1, S_p2 of S = d rdot / d qdot, and (derivatives()) the exact derivatives of rddot
+  // and of S^T rddot.
+  template <class S>
+  struct Point {
+    S N[4], Nx[4], Nxx[4], NL[4], NxL[4];  // shape values and their xi / L derivatives per cable slot
+    S L, Ldot, Lddot, xid, xidd;
+    S phiX[D], phiXX[D], phiL[D], phiXL[D], phiXXL[D], vX[D], vL[D], vXL[D], aL[D];
+    S rd[D], rdd[D], Sp1[D], Sp2[D];
+
+    template <class Q>
+    Point(double xi, const Q* q, const S* v, const S* a, const S& length) : L(length) {
+      const math::HermiteValues h = math::hermite(xi);
+      for (int k = 0; k < 4; ++k) {
+        const bool pos = k % 2 == 0;
+        N[k] = pos ? S(h.s[k]) : L * h.s[k];
+        Nx[k] = pos ? S(h.ds[k]) : L * h.ds[k];
+        Nxx[k] = pos ? S(h.dds[k]) : L * h.dds[k];
+        NL[k] = pos ? S(0.0) : S(h.s[k]);
+        NxL[k] = pos ? S(0.0) : S(h.ds[k]);
+      }
+      Ldot = v[kP2] - v[kP1];
+      Lddot = a[kP2] - a[kP1];
+      xid = -((1.0 - xi) * v[kP1] + xi * v[kP2]) / L;
+      xidd = -(a[kP1] + 2.0 * xid * Ldot + xi * Lddot) / L;
+      for (int i = 0; i < D; ++i) {
+        phiX[i] = phiXX[i] = phiL[i] = phiXL[i] = phiXXL[i] = vX[i] = vL[i] = vXL[i] = aL[i] = S(0.0);
+        S Nv(0.0), Na(0.0);
+        for (int k = 0; k < 4; ++k) {
+          const int s = slotIndex(k) + i;
+          phiX[i] += Nx[k] * q[s];
+          phiXX[i] += Nxx[k] * q[s];
+          phiL[i] += NL[k] * q[s];
+          phiXL[i] += NxL[k] * q[s];
+          phiXXL[i] += (k % 2 == 0 ? S(0.0) : S(h.dds[k])) * q[s];
+          vX[i] += Nx[k] * v[s];
+          vL[i] += NL[k] * v[s];
+          vXL[i] += NxL[k] * v[s];
+          aL[i] += NL[k] * a[s];
+          Nv += N[k] * v[s];
+          Na += N[k] * a[s];
+        }
+        rd[i] = Nv + phiX[i] * xid + phiL[i] * Ldot;
+        rdd[i] = Na + phiX[i] * xidd + phiL[i] * Lddot + 2.0 * vX[i] * xid + 2.0 * vL[i] * Ldot +
+                 phiXX[i] * xid * xid + 2.0 * phiXL[i] * xid * Ldot;
+        Sp1[i] = -phiX[i] * (1.0 - xi) / L - phiL[i];
+        Sp2[i] = -phiX[i] * xi / L + phiL[i];
+      }
+    }
+
+    // dRq = d rdd / d q (incl. p1, p2 through L), dRv = d rdd / d v, dSr[r][c] = d(S_r . rdd)/d q_c
+    // with rdd held: the derivative of the columns of S.
+    void derivatives(double xi, const double* q, const double*, const double*, double dRq[D][kDof],
+                     double dRv[D][kDof], double dSr[kDof][kDof]) const {
+      // d xid/dL = -xid/L; d xidd/dL = -xidd/L + 2 Ldot xid / L^2
+      const double dxidL = -xid / L, dxiddL = -xidd / L + 2.0 * Ldot * xid / (L * L);
+      // velocity derivatives of xid, xidd
+      const double dxid1 = -(1.0 - xi) / L, dxid2 = -xi / L;  // d xid / d v_p1, v_p2
+      const double dxidd1 = -(2.0 * Ldot * dxid1 - 2.0 * xid) / L;
+      const double dxidd2 = -(2.0 * Ldot * dxid2 + 2.0 * xid) / L;
+      for (int i = 0; i < D; ++i) {
+        // cable slots: rdd is linear in q through phi_X, phi_XX, phi_L, phi_XL
+        for (int k = 0; k < 4; ++k) {
+          const int c = slotIndex(k) + i;
+          dRq[i][c] = Nx[k] * xidd + NL[k] * Lddot + Nxx[k] * xid * xid + 2.0 * NxL[k] * xid * Ldot;
+          dRv[i][c] = 2.0 * Nx[k] * xid + 2.0 * NL[k] * Ldot;
+        }
+        // L (p2 = +, p1 = -): d rdd / dL at fixed q, v, a
+        const double drdL = aL[i] + phiXL[i] * xidd + phiX[i] * dxiddL + 2.0 * vXL[i] * xid + 2.0 * vX[i] * dxidL +
+                            phiXXL[i] * xid * xid + 2.0 * phiXX[i] * xid * dxidL + 2.0 * phiXL[i] * Ldot * dxidL;
+        dRq[i][kP2] += drdL;
+        dRq[i][kP1] -= drdL;
+        // v_p1, v_p2 (Ldot: -1, +1)
+        dRv[i][kP1] = phiX[i] * dxidd1 + 2.0 * vX[i] * dxid1 - 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid1 +
+                      2.0 * phiXL[i] * (dxid1 * Ldot - xid);
+        dRv[i][kP2] = phiX[i] * dxidd2 + 2.0 * vX[i] * dxid2 + 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid2 +
+                      2.0 * phiXL[i] * (dxid2 * Ldot + xid);
+      }
+      // the columns of S: N_k (slopes depend on L), S_p1, S_p2 (depend on q and L)
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < D; ++i) {
+          const int r = slotIndex(k) + i;
+          dSr[r][kP2] += NL[k] * rdd[i];
+          dSr[r][kP1] -= NL[k] * rdd[i];
+        }
+      for (int k = 0; k < 4; ++k)
+        for (int j = 0; j < D; ++j) {
+          const int c = slotIndex(k) + j;
+          dSr[kP1][c] += (-Nx[k] * (1.0 - xi) / L - NL[k]) * rdd[j];
+          dSr[kP2][c] += (-Nx[k] * xi / L + NL[k]) * rdd[j];
+        }
+      double dSp1L = 0.0, dSp2L = 0.0;  // d(S_p . rdd)/dL at fixed q
+      for (int i = 0; i < D; ++i) {
+        dSp1L += (-phiXL[i] * (1.0 - xi) / L + phiX[i] * (1.0 - xi) / (L * L)) * rdd[i];
+        dSp2L += (-phiXL[i] * xi / L + phiX[i] * xi / (L * L)) * rdd[i];
+      }
+      dSr[kP1][kP2] += dSp1L;
+      dSr[kP1][kP1] -= dSp1L;
+      dSr[kP2][kP2] += dSp2L;
+      dSr[kP2][kP1] -= dSp2L;
+      (void)q;
+    }
+  };
+};
+
+using AleCable2d = AleCable<2>;
+using AleCable3d = AleCable<3>;
+
+}  // namespace strand::elements

@@ -1,0 +1,224 @@
+// Element-level verification of the variable-length ALE cable AleCable2d/3d (seed 000; Hong, Tang &
+// Ren 2011), issue 35:
+//  - the elastic tangent equals the dual-number derivative of the force (positions, slopes and the
+//    material coordinates p1, p2), f = dU/du, rigid motions with unstretched spacing give no force;
+//  - with p1, p2 held, the elastic force equals the Lagrangian cable's (AncfCable) to round-off;
+//  - the inertial force F = rho A int S^T rddot dp (d'Alembert over the element's material, seed 000
+//    Eq. 27-29) differs from Lagrange's d/dt dT/dv - dT/dq of its kinetic energy
+//    T = 1/2 int_{p1}^{p2} rho A |rdot|^2 dp only by the momentum that flows through its ends
+//    (Leibniz's rule on the moving limits): per coordinate k,
+//      dT-terms - F_k = rho A [p2dot rdot(p2).S_k(p2) - p1dot rdot(p1).S_k(p1)]
+//                       - rho A/2 [|rdot(p2)|^2 delta_{k,p2} - |rdot(p1)|^2 delta_{k,p1}],
+//    with rdot(p_i) = v_ri - r_i' p_idot and S_k(p_i) the nodal position (1) or, for p_i, -r_i'.
+//    Between two elements these terms cancel, so the assembled mesh obeys Lagrange's equations but
+//    at its outer ends, where material enters or leaves;
+//  - M = dF/da is symmetric, and the tangents dF/da, dF/dv, dF/du equal dual-number derivatives;
+//  - with p1, p2 at rest, F = (the cable's consistent mass) a.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "strand/elements/AleCable.hpp"
+#include "strand/math/Dual.hpp"
+
+using namespace strand;
+using namespace strand::elements;
+
+namespace {
+
+template <int D>
+struct Fixture {
+  using E = AleCable<D>;
+  static constexpr int N = E::kDof;
+  typename E::Body body;
+  double q0[N], u[N], v[N], a[N];
+  std::mt19937 rng{11};
+
+  explicit Fixture(bool moving = true) {
+    SectionValues s;
+    s.numbers = {{"E", 2e7}, {"A", 1e-3}, {"I", 3e-7}, {"rho", 1000.0}};
+    body = E::body(s, {0.7, 1.0, 5});
+    std::uniform_real_distribution<double> r(-0.1, 0.1);
+    for (int k = 0; k < N; ++k) q0[k] = u[k] = v[k] = a[k] = 0.0;
+    // straight element along x at x = 3, material coordinates 5 and 5.7 (unstretched)
+    q0[E::slotIndex(0)] = 3.0;
+    q0[E::slotIndex(1)] = 1.0;
+    q0[E::slotIndex(2)] = 3.7;
+    q0[E::slotIndex(3)] = 1.0;
+    q0[E::kP1] = 5.0;
+    q0[E::kP2] = 5.7;
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < D; ++i) {
+        const int s = E::slotIndex(k) + i;
+        u[s] = r(rng) * (k % 2 == 0 ? 0.7 : 1.0);
+        v[s] = 10.0 * r(rng);
+        a[s] = 100.0 * r(rng);
+      }
+    if (moving) {
+      u[E::kP1] = 0.03;
+      u[E::kP2] = -0.05;
+      v[E::kP1] = 1.5;
+      v[E::kP2] = 2.5;
+      a[E::kP1] = -3.0;
+      a[E::kP2] = 7.0;
+    }
+  }
+};
+
+template <class T>
+class AleCableTest : public ::testing::Test {};
+using Dims = ::testing::Types<std::integral_constant<int, 2>, std::integral_constant<int, 3>>;
+TYPED_TEST_SUITE(AleCableTest, Dims);
+
+double maxAbs(const double* x, int n) {
+  double m = 0.0;
+  for (int k = 0; k < n; ++k) m = std::max(m, std::fabs(x[k]));
+  return m;
+}
+
+}  // namespace
+
+TYPED_TEST(AleCableTest, ElasticTangentIsTheExactDerivativeAndTheForceTheEnergyGradient) {
+  constexpr int D = TypeParam::value;
+  using E = AleCable<D>;
+  constexpr int N = E::kDof;
+  using Dl = math::Dual<N>;
+  Fixture<D> fx;
+  const typename E::Element el = E::element(fx.body, nullptr);
+  double f[N], K[N * N];
+  E::tangent(fx.body, el, fx.q0, fx.u, nullptr, f, K, nullptr);
+  Dl ud[N], fd[N];
+  for (int k = 0; k < N; ++k) ud[k] = Dl::variable(fx.u[k], k);
+  E::force(fx.body, el, fx.q0, ud, static_cast<const Dl*>(nullptr), fd);
+  const Dl U = E::strainEnergy(fx.body, el, fx.q0, ud);
+  double Kad[N * N];
+  for (int r = 0; r < N; ++r)
+    for (int c = 0; c < N; ++c) Kad[r * N + c] = fd[r].d[c];
+  const double sK = maxAbs(Kad, N * N), sF = maxAbs(f, N);
+  for (int k = 0; k < N; ++k) EXPECT_NEAR(f[k], U.d[k], 1e-11 * sF) << "f = dU/du, entry " << k;
+  for (int k = 0; k < N * N; ++k) EXPECT_NEAR(K[k], Kad[k], 1e-11 * sK) << "K entry " << k;
+}
+
+TYPED_TEST(AleCableTest, WithTheMaterialCoordinatesHeldItIsTheLagrangianCable) {
+  constexpr int D = TypeParam::value;
+  using E = AleCable<D>;
+  using C = AncfCable<D>;
+  Fixture<D> fx(false);
+  double f[E::kDof];
+  E::force(fx.body, E::element(fx.body, nullptr), fx.q0, fx.u, static_cast<const double*>(nullptr), f);
+  CableSection sec{2e7 * 1e-3, 2e7 * 3e-7, 1000.0 * 1e-3, 0.0, 0.0};
+  typename C::Geometry geo;
+  geo.length = 0.7;
+  const CableShapeTable tab(5);
+  double q0c[C::kDof], uc[C::kDof], fc[C::kDof];
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < D; ++i) {
+      q0c[k * D + i] = fx.q0[E::slotIndex(k) + i];
+      uc[k * D + i] = fx.u[E::slotIndex(k) + i];
+    }
+  C::force(sec, geo, tab, q0c, uc, static_cast<const double*>(nullptr), fc);
+  const double s = maxAbs(fc, C::kDof);
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < D; ++i) EXPECT_NEAR(f[E::slotIndex(k) + i], fc[k * D + i], 1e-12 * s);
+}
+
+TYPED_TEST(AleCableTest, InertiaIsLagrangesEquationPlusTheMomentumFluxThroughTheEnds) {
+  constexpr int D = TypeParam::value;
+  using E = AleCable<D>;
+  constexpr int N = E::kDof;
+  using Dl = math::Dual<N>;
+  Fixture<D> fx;
+  const typename E::Element el = E::element(fx.body, nullptr);
+  // dT/dv and dT/du exactly (dual numbers), as functions of (u, v)
+  auto gradients = [&](const double* u, const double* v, double* Tv, double* Tu) {
+    Dl ud[N], vd[N];
+    for (int k = 0; k < N; ++k) ud[k] = Dl(u[k]), vd[k] = Dl::variable(v[k], k);
+    const Dl T1 = E::kineticEnergy(fx.body, fx.q0, ud, vd);
+    for (int k = 0; k < N; ++k) Tv[k] = T1.d[k], ud[k] = Dl::variable(u[k], k), vd[k] = Dl(v[k]);
+    const Dl T2 = E::kineticEnergy(fx.body, fx.q0, ud, vd);
+    for (int k = 0; k < N; ++k) Tu[k] = T2.d[k];
+  };
+  // d/dt dT/dv along (u + v t, v + a t) by a central difference of the exact gradient
+  const double h = 1e-6;
+  double up[N], vp[N], um[N], vm[N], Tvp[N], Tvm[N], Tu[N], Tv[N], tmp[N];
+  for (int k = 0; k < N; ++k) {
+    up[k] = fx.u[k] + h * fx.v[k], vp[k] = fx.v[k] + h * fx.a[k];
+    um[k] = fx.u[k] - h * fx.v[k], vm[k] = fx.v[k] - h * fx.a[k];
+  }
+  gradients(up, vp, Tvp, tmp);
+  gradients(um, vm, Tvm, tmp);
+  gradients(fx.u, fx.v, Tv, Tu);
+  double F[N];
+  E::inertia(fx.body, el, fx.q0, fx.u, fx.v, fx.a, F);
+  // the momentum flux through the element's ends
+  double flux[N] = {}, q[N];
+  for (int k = 0; k < N; ++k) q[k] = fx.q0[k] + fx.u[k];
+  const double rhoA = 1.0;  // rho A of the fixture: 1000 * 1e-3
+  for (int node = 0; node < 2; ++node) {
+    const int pos = E::slotIndex(2 * node), slope = E::slotIndex(2 * node + 1), p = node == 0 ? E::kP1 : E::kP2;
+    const double sign = node == 0 ? -1.0 : 1.0, pdot = fx.v[p];
+    double rd[D], rd2 = 0.0;
+    for (int i = 0; i < D; ++i) {
+      rd[i] = fx.v[pos + i] - q[slope + i] * pdot;
+      rd2 += rd[i] * rd[i];
+    }
+    for (int i = 0; i < D; ++i) {
+      flux[pos + i] += sign * rhoA * pdot * rd[i];
+      flux[p] += sign * rhoA * pdot * rd[i] * (-q[slope + i]);
+    }
+    flux[p] -= sign * 0.5 * rhoA * rd2;
+  }
+  const double s = maxAbs(F, N);
+  for (int k = 0; k < N; ++k)
+    EXPECT_NEAR(F[k] + flux[k], (Tvp[k] - Tvm[k]) / (2.0 * h) - Tu[k], 1e-7 * s) << "entry " << k;
+}
+
+TYPED_TEST(AleCableTest, InertiaTangentsAreTheExactDerivatives) {
+  constexpr int D = TypeParam::value;
+  using E = AleCable<D>;
+  constexpr int N = E::kDof;
+  using Dl = math::Dual<N>;
+  Fixture<D> fx;
+  const typename E::Element el = E::element(fx.body, nullptr);
+  double F[N], M[N * N], C[N * N], K[N * N];
+  E::inertiaTangent(fx.body, el, fx.q0, fx.u, fx.v, fx.a, F, M, C, K);
+  for (int which = 0; which < 3; ++which) {  // d/da, d/dv, d/du
+    Dl ud[N], vd[N], ad[N], Fd[N];
+    for (int k = 0; k < N; ++k) {
+      ud[k] = which == 2 ? Dl::variable(fx.u[k], k) : Dl(fx.u[k]);
+      vd[k] = which == 1 ? Dl::variable(fx.v[k], k) : Dl(fx.v[k]);
+      ad[k] = which == 0 ? Dl::variable(fx.a[k], k) : Dl(fx.a[k]);
+    }
+    E::inertia(fx.body, el, fx.q0, ud, vd, ad, Fd);
+    const double* mine = which == 0 ? M : which == 1 ? C : K;
+    double ref[N * N];
+    for (int r = 0; r < N; ++r)
+      for (int c = 0; c < N; ++c) ref[r * N + c] = Fd[r].d[c];
+    const double s = std::max(maxAbs(ref, N * N), 1e-300);
+    for (int k = 0; k < N * N; ++k) EXPECT_NEAR(mine[k], ref[k], 1e-11 * s) << "matrix " << which << " entry " << k;
+  }
+  for (int r = 0; r < N; ++r)
+    for (int c = 0; c < N; ++c) EXPECT_NEAR(M[r * N + c], M[c * N + r], 1e-12 * maxAbs(M, N * N));
+}
+
+TYPED_TEST(AleCableTest, MaterialAtRestHasTheCablesConsistentMass) {
+  constexpr int D = TypeParam::value;
+  using E = AleCable<D>;
+  using C = AncfCable<D>;
+  Fixture<D> fx(false);
+  double F[E::kDof];
+  E::inertia(fx.body, E::element(fx.body, nullptr), fx.q0, fx.u, fx.v, fx.a, F);
+  CableSection sec{0, 0, 1.0, 0, 0};
+  typename C::Geometry geo;
+  geo.length = 0.7;
+  double Mc[C::kDof * C::kDof];
+  C::mass(sec, geo, CableShapeTable(4), Mc);
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < D; ++i) {
+      double ref = 0.0;
+      for (int l = 0; l < 4; ++l)
+        for (int j = 0; j < D; ++j) ref += Mc[(k * D + i) * C::kDof + l * D + j] * fx.a[E::slotIndex(l) + j];
+      EXPECT_NEAR(F[E::slotIndex(k) + i], ref, 1e-12 * (1.0 + std::fabs(ref)));
+    }
+}
