@@ -333,7 +333,8 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D) {
+PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D,
+                                          Vec A) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evDynJacobian, 0, 0, 0, 0));
   LocalRead x, v;
@@ -342,9 +343,15 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal s
   PetscCall(MatZeroEntries(J));
   if (D) PetscCall(MatZeroEntries(D));
   const double loadFactor = _model.loadFactor(t);
-  for (const auto& f : _families) PetscCall(f->dynamicJacobian(x.a, v.a, shiftV, shiftA, J, D, _fixedLocal));
+  for (const auto& f : _families) PetscCall(f->dynamicJacobian(x.a, v.a, loadFactor, shiftV, shiftA, J, D, _fixedLocal));
   PetscCall(_moments->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, _constraintScale, shiftA, loadFactor, J, _fixedLocal));
+  if (A && V && hasVariableMass()) {
+    LocalRead a;
+    PetscCall(beginLocal(A, _rWork, &a));
+    for (const auto& f : _families) PetscCall(f->inertiaJacobian(x.a, v.a, a.a, shiftV, shiftA, J, _fixedLocal));
+    PetscCall(endLocal(&a));
+  }
   PetscCall(endLocal(&x));
   if (V) PetscCall(endLocal(&v));
   PetscCall(assembleWithSupportDiagonal(J));
@@ -380,6 +387,59 @@ PetscErrorCode Assembler::massMatrix(Mat M, bool maskSupports) {
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(evMass, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::addInertia(Vec X, Vec V, Vec A, Vec R) {
+  PetscFunctionBeginUser;
+  if (!hasVariableMass()) PetscFunctionReturn(0);
+  Vec F;
+  PetscCall(VecDuplicate(_xWork, &F));  // a vector of the layout: the element sums go into its local form
+  LocalRead x, v, a;
+  LocalSum r;
+  PetscCall(beginLocal(X, _xWork, &x));
+  PetscCall(beginLocal(V, _vWork, &v));
+  PetscCall(beginLocal(A, _rWork, &a));
+  PetscCall(beginLocalSum(F, {X, V, A}, &r));
+  for (const auto& f : _families) PetscCallCXX(f->inertia(x.a, v.a, a.a, r.a));
+  PetscCall(endLocalSum(&r));
+  PetscCall(endLocal(&x));
+  PetscCall(endLocal(&v));
+  PetscCall(endLocal(&a));
+  PetscCall(VecAXPY(R, 1.0, F));
+  PetscCall(VecDestroy(&F));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::massMatrixAt(Vec X, Mat M, bool maskSupports) {
+  PetscFunctionBeginUser;
+  PetscCall(MatZeroEntries(M));
+  const std::vector<char>& fixed = maskSupports ? _fixedLocal : _noneFixed;
+  for (const auto& f : _families) PetscCall(f->mass(M, fixed));
+  PetscCall(_multibody->mass(M, fixed));
+  if (hasVariableMass()) {
+    LocalRead x;
+    PetscCall(beginLocal(X, _xWork, &x));
+    for (const auto& f : _families) PetscCall(f->massAt(x.a, M, fixed));
+    PetscCall(endLocal(&x));
+  }
+  PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::variableKineticEnergy(Vec X, Vec V, PetscReal* T) {
+  PetscFunctionBeginUser;
+  *T = 0.0;
+  if (!hasVariableMass()) PetscFunctionReturn(0);
+  LocalRead x, v;
+  PetscCall(beginLocal(X, _xWork, &x));
+  PetscCall(beginLocal(V, _vWork, &v));
+  double local = 0.0;
+  for (const auto& f : _families) local += f->kineticEnergy(x.a, v.a);
+  PetscCall(endLocal(&x));
+  PetscCall(endLocal(&v));
+  PetscCallMPI(MPI_Allreduce(&local, T, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
   PetscFunctionReturn(0);
 }
 

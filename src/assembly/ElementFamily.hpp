@@ -24,14 +24,27 @@ public:
   virtual void residual(const double* x, const double* v, double loadFactor, double* r) const = 0;
   // J += K (and the rotating frame's softening -loadFactor Omega^2 M_P).
   virtual PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const = 0;
-  // J += K + shiftV D + shiftA M; Dmat (if not null) += D.
-  virtual PetscErrorCode dynamicJacobian(const double* x, const double* v, double shiftV, double shiftA, Mat J,
-                                         Mat Dmat, const std::vector<char>& fixed) const = 0;
+  // J += K + shiftV D + shiftA M (K with the loads' tangent at loadFactor); Dmat (if not null) += D.
+  virtual PetscErrorCode dynamicJacobian(const double* x, const double* v, double loadFactor, double shiftV,
+                                         double shiftA, Mat J, Mat Dmat, const std::vector<char>& fixed) const = 0;
   // M += the consistent mass with point masses.
   virtual PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const = 0;
   // G += 2 Omega (m (x) [e]x): the Coriolis matrix of the rotating frame.
   virtual PetscErrorCode gyroscopic(Mat G, const std::vector<char>& fixed) const = 0;
   virtual double strainEnergy(const double* x) const = 0;
+
+  // Kinds whose mass depends on the coordinates (K::kConstantMass false, the ALE elements of seed
+  // 000) keep their inertia out of mass() and assemble it here; for the others these do nothing.
+  virtual bool constantMass() const = 0;
+  // r += F = M(x) a + Q_p(x, v), the inertial force of the moving material.
+  virtual void inertia(const double* x, const double* v, const double* a, double* r) const = 0;
+  // J += shiftA M(x) + shiftV dF/dv + dF/dx.
+  virtual PetscErrorCode inertiaJacobian(const double* x, const double* v, const double* a, double shiftV,
+                                         double shiftA, Mat J, const std::vector<char>& fixed) const = 0;
+  // M += M(x) (the consistent start's mass).
+  virtual PetscErrorCode massAt(const double* x, Mat M, const std::vector<char>& fixed) const = 0;
+  // 1/2 v^T M(x) v.
+  virtual double kineticEnergy(const double* x, const double* v) const = 0;
 };
 
 // The family of the model's element group `local.group` (its kind's KernelFamily).

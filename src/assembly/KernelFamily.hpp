@@ -5,7 +5,8 @@
 // Besides K's internal force and tangent, every kind gets here, from its slot mass m (M = m (x) I)
 // and its centerline interpolation:
 //   - point masses m_p at eta: m += m_p w(eta) w(eta)^T, their weight m_p w(eta) g;
-//   - distributed loads and gravity (K::consistentLoad, the same for every element of a body);
+//   - distributed loads and gravity (K::consistentLoad, the same for every element of a body; or,
+//     for kinds with K::kConfigurationLoads, K::distributedLoad per element with its tangent);
 //   - the rotating frame of seed 003: the centrifugal load Omega^2 (m (x) P)(q - c~), with the
 //     axis point c at the position slots (the interpolation reproduces constants there), its
 //     softening -Omega^2 m (x) P and the Coriolis matrix 2 Omega m (x) [e]x.
@@ -78,6 +79,11 @@ public:
       if (v) gatherVelocity(k, v, ve);
       K::force(pb.kernel, element(k), q0, u, v ? ve : static_cast<const double*>(nullptr), f);
       if (omega2 != 0.0) addCentrifugalForce(k, q0, u, loadFactor * omega2, f);
+      if constexpr (K::kConfigurationLoads) {
+        double Q[N];
+        K::distributedLoad(pb.kernel, q0, u, loadPerLength(k), Q);
+        for (int i = 0; i < N; ++i) f[i] -= loadFactor * Q[i];
+      }
       const auto& fe = pb.load;
       const PetscInt* lb = _local.localBlocksOf(k);
       for (int a = 0; a < B; ++a)
@@ -100,6 +106,7 @@ public:
       gather(k, x, u, q0);
       K::tangent(perBody(k).kernel, element(k), q0, u, nullptr, nullptr, Ke, nullptr);
       if (omega2 != 0.0) addMassBlocks(k, -loadFactor * omega2, _projector, Ke);  // softening -Omega^2 M_P
+      addLoadTangent(k, q0, u, loadFactor, Ke);
       maskFixed(k, fixed, Ke);
       PetscCall(toJ.add(k, Ke));
     }
@@ -108,8 +115,8 @@ public:
 
   // K + shiftV D + shiftA M in one pass over the elements (the Newton matrix of an implicit
   // integrator).
-  PetscErrorCode dynamicJacobian(const double* x, const double* v, double shiftV, double shiftA, Mat J, Mat Dmat,
-                                 const std::vector<char>& fixed) const override {
+  PetscErrorCode dynamicJacobian(const double* x, const double* v, double loadFactor, double shiftV, double shiftA,
+                                 Mat J, Mat Dmat, const std::vector<char>& fixed) const override {
     PetscFunctionBeginUser;
     double u[N], q0[N], ve[N], Ke[N * N], De[N * N];
     ElementInserter toJ, toD;
@@ -129,6 +136,7 @@ public:
         }
       }
       addMassBlocks(k, shiftA, _identity, Ke);
+      addLoadTangent(k, q0, u, loadFactor, Ke);
       maskFixed(k, fixed, Ke);
       PetscCall(toJ.add(k, Ke));
     }
@@ -155,6 +163,80 @@ public:
     return U;
   }
 
+  bool constantMass() const override { return K::kConstantMass; }
+
+  void inertia(const double* x, const double* v, const double* a, double* r) const override {
+    if constexpr (!K::kConstantMass) {
+      double u[N], q0[N], ve[N], ae[N], F[N];
+      for (int k = 0; k < _local.size(); ++k) {
+        gather(k, x, u, q0);
+        gatherVelocity(k, v, ve);
+        gatherVelocity(k, a, ae);
+        K::inertia(perBody(k).kernel, element(k), q0, u, ve, ae, F);
+        const PetscInt* lb = _local.localBlocksOf(k);
+        for (int b = 0; b < B; ++b)
+          for (int i = 0; i < D; ++i) r[lb[b] * D + i] += F[b * D + i];
+      }
+    } else {
+      (void)x, (void)v, (void)a, (void)r;
+    }
+  }
+
+  PetscErrorCode inertiaJacobian(const double* x, const double* v, const double* a, double shiftV, double shiftA,
+                                 Mat J, const std::vector<char>& fixed) const override {
+    PetscFunctionBeginUser;
+    if constexpr (!K::kConstantMass) {
+      double u[N], q0[N], ve[N], ae[N], M[N * N], C[N * N], Kq[N * N];
+      ElementInserter toJ;
+      PetscCall(ElementInserter::create(J, _dofs, _local, &toJ));
+      for (int k = 0; k < _local.size(); ++k) {
+        gather(k, x, u, q0);
+        gatherVelocity(k, v, ve);
+        gatherVelocity(k, a, ae);
+        K::inertiaTangent(perBody(k).kernel, element(k), q0, u, ve, ae, nullptr, M, C, Kq);
+        for (int i = 0; i < N * N; ++i) Kq[i] += shiftA * M[i] + shiftV * C[i];
+        maskFixed(k, fixed, Kq);
+        PetscCall(toJ.add(k, Kq));
+      }
+    } else {
+      (void)x, (void)v, (void)a, (void)shiftV, (void)shiftA, (void)J, (void)fixed;
+    }
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode massAt(const double* x, Mat Mat_, const std::vector<char>& fixed) const override {
+    PetscFunctionBeginUser;
+    if constexpr (!K::kConstantMass) {
+      double u[N], q0[N], zero[N] = {}, M[N * N], C[N * N], Kq[N * N];
+      ElementInserter toM;
+      PetscCall(ElementInserter::create(Mat_, _dofs, _local, &toM));
+      for (int k = 0; k < _local.size(); ++k) {
+        gather(k, x, u, q0);
+        K::inertiaTangent(perBody(k).kernel, element(k), q0, u, zero, zero, nullptr, M, C, Kq);
+        maskFixed(k, fixed, M);
+        PetscCall(toM.add(k, M));
+      }
+    } else {
+      (void)x, (void)Mat_, (void)fixed;
+    }
+    PetscFunctionReturn(0);
+  }
+
+  double kineticEnergy(const double* x, const double* v) const override {
+    double T = 0.0;
+    if constexpr (!K::kConstantMass) {
+      double u[N], q0[N], ve[N];
+      for (int k = 0; k < _local.size(); ++k) {
+        gather(k, x, u, q0);
+        gatherVelocity(k, v, ve);
+        T += K::kineticEnergy(perBody(k).kernel, q0, u, ve);
+      }
+    } else {
+      (void)x, (void)v;
+    }
+    return T;
+  }
+
 private:
   struct PerBody {
     typename K::Body kernel;
@@ -172,6 +254,19 @@ private:
     const double* ref = pb.referenceCount ? &body(k).referenceValues[static_cast<size_t>(elementIndex(k)) * pb.referenceCount]
                                           : nullptr;
     return K::element(pb.kernel, ref);
+  }
+
+  const double* loadPerLength(int k) const { return body(k).loadPerLength.data(); }
+
+  // Ke -= loadFactor dQ_f/du of a configuration-dependent distributed load (K::kConfigurationLoads).
+  void addLoadTangent(int k, const double* q0, const double* u, double loadFactor, double* Ke) const {
+    if constexpr (K::kConfigurationLoads) {
+      double Kf[N * N];
+      K::distributedLoadTangent(perBody(k).kernel, q0, u, loadPerLength(k), Kf);
+      for (int i = 0; i < N * N; ++i) Ke[i] -= loadFactor * Kf[i];
+    } else {
+      (void)k, (void)q0, (void)u, (void)loadFactor, (void)Ke;
+    }
   }
 
   // Element reference coordinates q0 and displacements u from ghosted-local arrays.

@@ -617,7 +617,7 @@ void readPointMasses(const Field& f, BodyDesc& body) {
 
 BodyDesc readBody(const Field& f, const Context& ctx) {
   f.expectMap({"name", "element", "elements", "geometry", "section", "formulation", "stress_free", "point_masses",
-               "initial_velocity"});
+               "initial_velocity", "material_motion", "initial_stretch"});
   BodyDesc body;
   body.mark = f.mark();
   const Field name = f.child("name");
@@ -643,7 +643,20 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
       stressFree.fail(std::string("'initial' is not available for ") + kind.name +
                       (ctx.dim != 2 ? " ('initial' is only allowed when dimension is 2)" : " (its stress-free shape is straight)"));
   }
-  if (const Field masses = f.child("point_masses"); masses.present()) readPointMasses(masses, body);
+  if (const Field masses = f.child("point_masses"); masses.present()) {
+    if (!kind.constantMass) masses.fail(std::string("point masses on ") + kind.name + " bodies are not built yet");
+    readPointMasses(masses, body);
+  }
+  bool ale = false;
+  for (int k = 0; k < kind.blocksPerNode; ++k) ale = ale || kind.layout[k] == elements::BlockRole::MaterialCoordinate;
+  for (const char* key : {"material_motion", "initial_stretch"})
+    if (const Field k = f.child(key); k.present() && !ale)
+      k.fail(std::string(kind.name) + " has no material coordinates (an ALE kind has: AleCable2d, AleCable3d)");
+  if (const Field motion = f.child("material_motion"); motion.present()) {
+    body.hasMaterialMotion = true;
+    body.materialMotion = readTimeFunction(motion);
+  }
+  if (const Field stretch = f.child("initial_stretch"); stretch.present()) body.initialStretch = requirePositive(stretch);
   if (const Field v = f.child("initial_velocity"); v.present()) {
     v.expectMap({"linear", "angular", "center"});
     body.hasInitialVelocity = true;
@@ -693,6 +706,18 @@ public:
     if (const Field f = root.child("rotation"); f.present()) readRotation(f);
     if (const Field f = root.child("sweep"); f.present()) readSweep(f);
     if (const Field f = root.child("dynamics"); f.present()) readDynamics(f);
+    for (size_t b = 0; b < scene_.bodies.size(); ++b) {  // kinds whose mass changes with their coordinates
+      const elements::KindInfo& kind = elements::kindInfo(scene_.bodies[b].kind);
+      if (kind.constantMass) continue;
+      if (scene_.analysis == model::Analysis::Modes)
+        failAt(scene_.bodies[b].mark, std::string("modal analysis of ") + kind.name + " bodies is not built yet");
+      if (scene_.analysis == model::Analysis::Dynamic && model::isFirstOrder(scene_.dynamics.integrator))
+        root.child("dynamics").child("integrator").fail(
+            std::string(kind.name) + " (body '" + scene_.bodies[b].name + "') has a mass that changes with its material "
+            "coordinates: use generalized_alpha, newmark or hht");
+      if (scene_.analysis != model::Analysis::Dynamic && scene_.bodies[b].hasMaterialMotion)
+        failAt(scene_.bodies[b].mark, "material_motion is a motion in time: only with analysis: dynamic");
+    }
     if (scene_.analysis == model::Analysis::Dynamic) {
       if (!root.child("dynamics").present())
         root.child("analysis").fail("analysis 'dynamic' needs a 'dynamics' section (dt, t_end)");

@@ -108,7 +108,10 @@ void Model::addBodies(Build& build) {
     b.elementLength = b.length / b.elements;
     b.section = bd.section;
     b.properties = info.properties(bd.section);
-    b.discretization = {b.elementLength, scene.discretization.slopeScaling ? b.elementLength : 1.0,
+    bool ale = false;  // material coordinates: slopes are dr/dp = lambda0 dr/ds (never scaled by l)
+    for (int k = 0; k < info.blocksPerNode; ++k) ale = ale || info.layout[k] == elements::BlockRole::MaterialCoordinate;
+    b.discretization = {b.elementLength,
+                        ale ? bd.initialStretch : scene.discretization.slopeScaling ? b.elementLength : 1.0,
                         scene.discretization.gaussPoints};
     b.velocityDependent = info.velocityDependent(bd.section, b.discretization);
     b.blocksPerNode = info.blocksPerNode;
@@ -255,7 +258,7 @@ void Model::placeInitialState(Build& build) {
             q[1] = p.t[0];
             break;
           case elements::BlockRole::MaterialCoordinate:  // the unstretched arc length from node 0; padding 0
-            q[0] = n * b.elementLength;
+            q[0] = n * b.elementLength / b.discretization.gradientScale;
             break;
           case elements::BlockRole::Position:
             throw std::logic_error("Model: one position block per node");
@@ -325,6 +328,19 @@ void Model::addSupports(Build& build) {
         const bool used = static_cast<int>(k) * _dim + i < j.count;
         (used ? _multiplier : _fixed)[j.lambdaBlocks[k] * _dim + i] = 1;
       }
+  // ALE bodies: the padding of the material-coordinate blocks is held; the material coordinate
+  // too, or it follows the body's material_motion (a prescribed coordinate)
+  for (size_t bi = 0; bi < _bodies.size(); ++bi) {
+    const Body& b = _bodies[bi];
+    for (int k = 0; k < b.blocksPerNode; ++k) {
+      if (b.info().layout[k] != elements::BlockRole::MaterialCoordinate) continue;
+      for (int n = 0; n <= b.elements; ++n) {
+        const int dof = b.block(n, k) * _dim;
+        for (int i = 0; i < _dim; ++i) _fixed[dof + i] = 1;
+        if (scene.bodies[bi].hasMaterialMotion) _prescribed.push_back({dof, scene.bodies[bi].materialMotion});
+      }
+    }
+  }
   // clamped: the position and the orientation block (the cable's slope, a beam's cross-section
   // vector); pinned: the position; fixed: the listed node coordinates, block by block
   for (const SupportDesc& s : scene.supports) {

@@ -19,9 +19,13 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   const model::DofMap& dofs = assembler.dofs();
   MPI_Comm comm = dofs.comm();
   _damped = assembler.model().velocityDependent();
-  // every integrator here keeps M from the reference state (kinds with M(q) need M(q) a and dM/dq a)
-  if (!assembler.model().constantMass())
-    throw std::logic_error("Dynamics: an element kind with a configuration-dependent mass; the integrators assume a constant one");
+  // Kinds whose mass depends on the coordinates (the ALE elements) add their inertia
+  // M(q) a + Q_p(q, v) to the residual and its derivatives to the Newton matrix (formFunction,
+  // formJacobian); _M holds the constant part. The first-order forms factor a constant mass: they
+  // are refused for such models (the scene reader says so with the scene's line first).
+  _variableMass = assembler.hasVariableMass();
+  if (_variableMass && model::isFirstOrder(desc.integrator))
+    throw std::logic_error("Dynamics: a configuration-dependent mass needs a generalized-alpha scheme");
   _moving = assembler.model().hasPrescribedMotion();
   _constrained = assembler.hasConstraints();
   for (const model::Body& b : assembler.model().bodies()) _energyFloor += 1e-12 * b.properties.EA * b.length;
@@ -193,7 +197,7 @@ PetscErrorCode Dynamics::createMassSolver(Vec X, KSP* ksp) {
   if (_constrained) {
     PetscCall(_asm.saddleMatrix(X, S));
   } else {
-    PetscCall(_asm.massMatrix(S, true));
+    PetscCall(_asm.massMatrixAt(X, S, true));
     PetscCall(MatDiagonalSet(S, _supported, ADD_VALUES));
   }
   PetscCall(KSPCreate(comm, ksp));
@@ -236,6 +240,7 @@ PetscErrorCode Dynamics::consistentAcceleration(PetscReal t, Vec X, Vec V, Vec A
   PetscCall(_asm.prescribedMotion(t, nullptr, nullptr, A));
   PetscCall(_asm.residual(X, _damped ? V : nullptr, t, _w1));
   PetscCall(MatMultAdd(_M, A, _w1, _w1));
+  if (_variableMass) PetscCall(_asm.addInertia(X, V, A, _w1));  // M(q) a_p + Q_p(q, v)
   PetscCall(_asm.zeroSupportedRows(_w1));
   PetscCall(VecScale(_w1, -1.0));
   if (_constrained) {
@@ -345,6 +350,7 @@ PetscErrorCode Dynamics::supportForce(Vec F) {
   PetscCall(currentAcceleration(&A));
   PetscCall(_asm.residual(X, _damped ? V : nullptr, t, F, assembly::SupportRows::Reaction));
   PetscCall(MatMultAdd(_M, A, F, F));
+  if (_variableMass) PetscCall(_asm.addInertia(X, V, A, F));
   PetscCall(VecPointwiseMult(F, F, _supported));
   PetscFunctionReturn(0);
 }
@@ -375,6 +381,7 @@ PetscErrorCode Dynamics::supportForceAt(PetscReal t, Vec X, Vec V, Vec F) {
   }
   PetscCall(_asm.residual(X, _damped ? V : nullptr, t, F, assembly::SupportRows::Reaction));
   PetscCall(MatMultAdd(_M, _acc, F, F));
+  if (_variableMass) PetscCall(_asm.addInertia(X, V, _acc, F));
   PetscCall(VecPointwiseMult(F, F, _supported));
   PetscFunctionReturn(0);
 }
@@ -385,6 +392,7 @@ PetscErrorCode Dynamics::formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec 
   auto* self = static_cast<Dynamics*>(ctx);
   PetscCall(self->_asm.residual(U, self->_damped ? V : nullptr, t, F, assembly::SupportRows::Reaction));
   PetscCall(MatMultAdd(self->_M, A, F, F));
+  if (self->_variableMass) PetscCall(self->_asm.addInertia(U, V, A, F));
   if (self->_moving) {  // the support force of this state; the last call of a step is at its end
     PetscCall(VecPointwiseMult(self->_reaction, F, self->_supported));
     self->_reactionValid = true;
@@ -406,7 +414,7 @@ std::string Dynamics::newtonStart() const {
   return name;
 }
 
-PetscErrorCode Dynamics::formJacobian(TS ts, PetscReal t, Vec U, Vec V, Vec, PetscReal shiftV, PetscReal shiftA, Mat J, Mat,
+PetscErrorCode Dynamics::formJacobian(TS ts, PetscReal t, Vec U, Vec V, Vec A, PetscReal shiftV, PetscReal shiftA, Mat J, Mat,
                                       void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
@@ -417,7 +425,8 @@ PetscErrorCode Dynamics::formJacobian(TS ts, PetscReal t, Vec U, Vec V, Vec, Pet
   self->_floor.keptMatrix = !rebuild;
   // where Newton started away from the constant-acceleration predictor (NewtonFloor::offset)
   if (self->_ownAlpha) PetscCall(GeneralizedAlphaGetPredictorOffset(ts, &self->_floor.offset));
-  if (rebuild) PetscCall(self->_asm.dynamicJacobian(U, self->_damped ? V : nullptr, t, shiftV, shiftA, J));
+  if (rebuild && self->_variableMass) PetscCall(self->_asm.dynamicJacobian(U, V, t, shiftV, shiftA, J, nullptr, A));
+  else if (rebuild) PetscCall(self->_asm.dynamicJacobian(U, self->_damped ? V : nullptr, t, shiftV, shiftA, J));
   PetscFunctionReturn(0);
 }
 
@@ -454,6 +463,11 @@ PetscErrorCode Dynamics::energies(Vec X, Vec V, DynamicsStep* s) {
   PetscCall(MatMult(_M, V, _w1));
   PetscCall(VecDot(_w1, V, &vmv));
   s->kinetic = 0.5 * vmv;
+  if (_variableMass) {
+    PetscReal T;
+    PetscCall(_asm.variableKineticEnergy(X, V, &T));
+    s->kinetic += T;
+  }
   PetscCall(_asm.strainEnergy(X, &s->strain));
   PetscCall(VecDot(_fext, X, &fu));
   s->potential = _asm.model().hasLoadFunction() ? 0.0 : -fu;  // time-scaled loads: their work instead

@@ -222,3 +222,27 @@ TYPED_TEST(AleCableTest, MaterialAtRestHasTheCablesConsistentMass) {
       EXPECT_NEAR(F[E::slotIndex(k) + i], ref, 1e-12 * (1.0 + std::fabs(ref)));
     }
 }
+
+// requirement: a force per unit length f on the moving material gives Q_f = int S^T f dp, the
+// virtual work of f on the element's material (Eq. 43-44, with the p columns of S); it depends on
+// the coordinates, and its tangent is the dual-number derivative.
+TYPED_TEST(AleCableTest, DistributedLoadIsThePotentialsGradientWithAnExactTangent) {
+  constexpr int D = TypeParam::value;
+  using E = AleCable<D>;
+  constexpr int N = E::kDof;
+  using Dl = math::Dual<N>;
+  Fixture<D> fx;
+  const double f[3] = {0.3, -9.81, D == 3 ? 1.7 : 0.0};
+  double Q[N], K[N * N];
+  E::distributedLoad(fx.body, fx.q0, fx.u, f, Q);
+  E::distributedLoadTangent(fx.body, fx.q0, fx.u, f, K);
+  Dl ud[N], Qd[N];
+  for (int k = 0; k < N; ++k) ud[k] = Dl::variable(fx.u[k], k);
+  E::distributedLoad(fx.body, fx.q0, ud, f, Qd);
+  double ref[N * N];
+  for (int r = 0; r < N; ++r)
+    for (int c = 0; c < N; ++c) ref[r * N + c] = Qd[r].d[c];
+  const double s = maxAbs(ref, N * N);
+  for (int k = 0; k < N * N; ++k) EXPECT_NEAR(K[k], ref[k], 1e-12 * s) << "entry " << k;
+  for (int k = 0; k < N; ++k) EXPECT_NEAR(Q[k], Qd[k].v, 1e-14 * maxAbs(Q, N));
+}

@@ -13,3 +13,4 @@ strand_test(NAME verify_rigid_body_3d SOURCES verification/test_rigid_body_3d.cp
 strand_test(NAME verify_distance_joint SOURCES verification/test_distance_joint.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_shear_beams SOURCES verification/test_shear_beams.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_shear_beam_dynamics SOURCES verification/test_shear_beam_dynamics.cpp LABELS verification NPROCS 1 2)
+strand_test(NAME verify_ale SOURCES verification/test_ale.cpp LABELS verification NPROCS 1 2)

@@ -80,7 +80,19 @@ public:
   // (elastic, joints, and the configuration-dependent loads: nodal moments, 3D torques),
   // D = df_int/dV (Kelvin-Voigt), M the consistent mass; unit rows and columns at supports. With
   // D non-null (and V given), D alone is assembled there too (zero rows and columns at supports).
-  PetscErrorCode dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D = nullptr);
+  // With A given, the inertia of kinds whose mass depends on the coordinates is included too
+  // (shiftA M(X) + shiftV dF/dV + dF/dX, addInertia).
+  PetscErrorCode dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal shiftV, PetscReal shiftA, Mat J, Mat D = nullptr,
+                                 Vec A = nullptr);
+  // Kinds whose mass depends on the coordinates (the ALE elements, K::kConstantMass false): their
+  // inertia is not in massMatrix(); R += F = M(X) A + Q_p(X, V) adds it (every row, supported ones
+  // included). hasVariableMass() tells whether the model has such kinds.
+  bool hasVariableMass() const { return !_model.constantMass(); }
+  PetscErrorCode addInertia(Vec X, Vec V, Vec A, Vec R);
+  // The mass at X: massMatrix() plus M(X) of the variable-mass kinds (the consistent start).
+  PetscErrorCode massMatrixAt(Vec X, Mat M, bool maskSupports = true);
+  // 1/2 V^T M(X) V of the variable-mass kinds (all ranks; 0 without them).
+  PetscErrorCode variableKineticEnergy(Vec X, Vec V, PetscReal* T);
   // The constant applied loads f_ext (gravity, distributed and nodal forces) at the reference state,
   // on every row, supported ones included; nodal moments are evaluated there too (they follow the
   // slope, so they are not constant).

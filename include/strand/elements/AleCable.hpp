@@ -276,6 +276,60 @@ public:
     }
   }
 
+  // ---- distributed loads: a force per unit length f on the moving material ----
+  // Q_f = int_{p1}^{p2} S^T f dp (seed 000 Eq. 43-44 with the p columns of S): it depends on the
+  // coordinates (the element's length and the material it holds), so it is assembled with the
+  // elastic force (kConfigurationLoads) and has a tangent.
+  static constexpr bool kConfigurationLoads = true;
+
+  template <class S>
+  static void distributedLoad(const Body& b, const double* q0, const S* u, const double* fvec, S* Q) {
+    S q[kDof], zero[kDof];
+    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], zero[k] = S(0.0), Q[k] = S(0.0);
+    const S L = q[kP2] - q[kP1];
+    for (int g = 0; g < b.inertial.size(); ++g) {
+      const Point<S> pt(b.inertial.x[g], q, zero, zero, L);
+      const S scale = b.inertial.w[g] * L;
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < D; ++i) Q[slotIndex(k) + i] += scale * pt.N[k] * fvec[i];
+      S s1(0.0), s2(0.0);
+      for (int i = 0; i < D; ++i) {
+        s1 += pt.Sp1[i] * fvec[i];
+        s2 += pt.Sp2[i] * fvec[i];
+      }
+      Q[kP1] += scale * s1;
+      Q[kP2] += scale * s2;
+    }
+  }
+
+  // dQ_f/du (row-major kDof x kDof).
+  static void distributedLoadTangent(const Body& b, const double* q0, const double* u, const double* fvec, double* K) {
+    double q[kDof], zero[kDof] = {};
+    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k];
+    for (int k = 0; k < kDof * kDof; ++k) K[k] = 0.0;
+    const double L = q[kP2] - q[kP1];
+    for (int g = 0; g < b.inertial.size(); ++g) {
+      const double xi = b.inertial.x[g], w = b.inertial.w[g];
+      const Point<double> pt(xi, q, zero, zero, L);
+      double dSf[kDof][kDof] = {};
+      pt.columnDerivatives(xi, fvec, dSf);
+      for (int r = 0; r < kDof; ++r)
+        for (int c = 0; c < kDof; ++c) K[r * kDof + c] += w * L * dSf[r][c];
+      // the factor L
+      double sf[kDof] = {};
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < D; ++i) sf[slotIndex(k) + i] = pt.N[k] * fvec[i];
+      for (int i = 0; i < D; ++i) {
+        sf[kP1] += pt.Sp1[i] * fvec[i];
+        sf[kP2] += pt.Sp2[i] * fvec[i];
+      }
+      for (int r = 0; r < kDof; ++r) {
+        K[r * kDof + kP2] += w * sf[r];
+        K[r * kDof + kP1] -= w * sf[r];
+      }
+    }
+  }
+
   // ---- the remaining contract members ----
 
   // The mass at the reference state is not used (kConstantMass = false): inertia() is the element's.
@@ -289,7 +343,7 @@ public:
     for (int k = 0; k < kBlocks; ++k) w[k] = ww[k];
   }
   static void consistentLoad(const Body&, const double*, double* f) {
-    for (int k = 0; k < kDof; ++k) f[k] = 0.0;  // distributed loads on ALE bodies: the element's (not yet)
+    for (int k = 0; k < kDof; ++k) f[k] = 0.0;  // none constant: distributedLoad() (kConfigurationLoads)
   }
   static int referenceValueCount(const Body&) { return 0; }
   static void referenceValues(const Body&, const double*, double*) {}
@@ -418,29 +472,34 @@ private:
         dRv[i][kP2] = phiX[i] * dxidd2 + 2.0 * vX[i] * dxid2 + 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid2 +
                       2.0 * phiXL[i] * (dxid2 * Ldot + xid);
       }
-      // the columns of S: N_k (slopes depend on L), S_p1, S_p2 (depend on q and L)
+      columnDerivatives(xi, rdd, dSr);
+      (void)q;
+    }
+
+    // dSw[r][c] += d(S_r . w)/d q_c with w held: the derivatives of the columns of S, the cable
+    // slots N_k (the slopes' depend on L) and S_p1, S_p2 (on q and L).
+    void columnDerivatives(double xi, const double* w, double dSw[kDof][kDof]) const {
       for (int k = 0; k < 4; ++k)
         for (int i = 0; i < D; ++i) {
           const int r = slotIndex(k) + i;
-          dSr[r][kP2] += NL[k] * rdd[i];
-          dSr[r][kP1] -= NL[k] * rdd[i];
+          dSw[r][kP2] += NL[k] * w[i];
+          dSw[r][kP1] -= NL[k] * w[i];
         }
       for (int k = 0; k < 4; ++k)
         for (int j = 0; j < D; ++j) {
           const int c = slotIndex(k) + j;
-          dSr[kP1][c] += (-Nx[k] * (1.0 - xi) / L - NL[k]) * rdd[j];
-          dSr[kP2][c] += (-Nx[k] * xi / L + NL[k]) * rdd[j];
+          dSw[kP1][c] += (-Nx[k] * (1.0 - xi) / L - NL[k]) * w[j];
+          dSw[kP2][c] += (-Nx[k] * xi / L + NL[k]) * w[j];
         }
-      double dSp1L = 0.0, dSp2L = 0.0;  // d(S_p . rdd)/dL at fixed q
+      double dSp1L = 0.0, dSp2L = 0.0;  // d(S_p . w)/dL at fixed q
       for (int i = 0; i < D; ++i) {
-        dSp1L += (-phiXL[i] * (1.0 - xi) / L + phiX[i] * (1.0 - xi) / (L * L)) * rdd[i];
-        dSp2L += (-phiXL[i] * xi / L + phiX[i] * xi / (L * L)) * rdd[i];
+        dSp1L += (-phiXL[i] * (1.0 - xi) / L + phiX[i] * (1.0 - xi) / (L * L)) * w[i];
+        dSp2L += (-phiXL[i] * xi / L + phiX[i] * xi / (L * L)) * w[i];
       }
-      dSr[kP1][kP2] += dSp1L;
-      dSr[kP1][kP1] -= dSp1L;
-      dSr[kP2][kP2] += dSp2L;
-      dSr[kP2][kP1] -= dSp2L;
-      (void)q;
+      dSw[kP1][kP2] += dSp1L;
+      dSw[kP1][kP1] -= dSp1L;
+      dSw[kP2][kP2] += dSp2L;
+      dSw[kP2][kP1] -= dSp2L;
     }
   };
 };

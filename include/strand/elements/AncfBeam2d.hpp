@@ -86,6 +86,7 @@ public:
   static constexpr int kOrientationBlock = Centerline::kOrientationBlock;  // r_y: the cross-section
   static constexpr bool kStressFreeInitial = false;
   static constexpr bool kConstantMass = true;
+  static constexpr bool kConfigurationLoads = false;
   static constexpr SectionKey kSectionKeys[] = {
       {"E", "Young's modulus [Pa]", true, 0.0, 0.0, false, kNoLimit},
       {"nu", "Poisson's ratio", false, 0.0, 0.0, true, 0.5},

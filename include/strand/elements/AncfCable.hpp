@@ -228,6 +228,7 @@ public:
   static constexpr int kOrientationBlock = 1;          // a clamp holds the slope; a moment turns it
   static constexpr bool kStressFreeInitial = D == 2;   // stress_free: initial (reference curvature)
   static constexpr bool kConstantMass = true;
+  static constexpr bool kConfigurationLoads = false;  // distributed loads: the constant consistentLoad
   static constexpr SectionKey kSectionKeys[] = {
       {"E", "Young's modulus [Pa]", true, 0.0, 0.0, false, kNoLimit},
       {"A", "cross-section area [m^2]", true, 0.0, 0.0, false, kNoLimit},

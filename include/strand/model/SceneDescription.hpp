@@ -58,6 +58,14 @@ struct BodyDesc {
   std::vector<PointMassDesc> pointMasses;
   // initial velocity field of a rigid motion (dynamics): v = linear + angular x (r - center) for
   // positions, angular x r' for slopes; 2D: angular about z (angularVelocity[2])
+  // ALE bodies (a kind with material coordinates): every node's material coordinate moves by
+  // material_motion(t) - material_motion(0) [m] (material flowing through the nodes at the rate
+  // material_motion'); without it the material coordinates are held (a Lagrangian mesh)
+  bool hasMaterialMotion = false;
+  TimeFunction materialMotion;
+  // ALE bodies: the initial shape is the material stretched by this factor (lambda0 > 0): material
+  // coordinates p = s / lambda0 at arc length s, slopes dr/dp = lambda0 t (a pretension)
+  double initialStretch = 1.0;
   bool hasInitialVelocity = false;
   Vec3 linearVelocity{}, angularVelocity{}, velocityCenter{};
   SourceMark mark;

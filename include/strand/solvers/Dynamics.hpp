@@ -167,6 +167,7 @@ private:
   Vec _a0 = nullptr;         // initial acceleration (kept for TS types without an acceleration state)
   Vec _multipliers = nullptr, _notMultiplier = nullptr;  // 1 / 0 on multiplier DOFs, and 1 - that
   bool _damped = false, _moving = false, _constrained = false;
+  bool _variableMass = false;  // kinds with M(q): their inertia in the residual (Assembler::addInertia)
   bool _firstOrder = false, _explicit = false;  // StateSpace form; RK4 / ABM4
   bool _ownAlpha = false;                        // run() integrates with our strand_alpha TS
   std::string _schemeName;
