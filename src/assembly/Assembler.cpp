@@ -134,6 +134,7 @@ PetscErrorCode Assembler::saddleMatrix(Vec X, Mat S) {
   PetscCall(beginLocal(X, _xWork, &x));
   PetscCall(MatZeroEntries(S));
   for (const auto& f : _families) PetscCall(f->mass(S, _fixedLocal));
+  for (const auto& f : _families) PetscCall(f->massAt(x.a, S, _fixedLocal));  // M(q) of the ALE kinds
   PetscCall(_multibody->mass(S, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, 1.0, 0.0, 0.0, S, _fixedLocal, true));
   PetscCall(endLocal(&x));
@@ -464,10 +465,11 @@ PetscErrorCode Assembler::prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) con
   for (const auto& [owned, k] : _movedCoordinates) {
     // the scene's angle is the one at t = 0: phi = angle + f(t) - f(0) (user-guide, "Turning hubs")
     const model::TimeFunction& function = _model.prescribedCoordinates()[k].function;
+    const double s = _model.prescribedCoordinates()[k].scale;
     const model::TimeValue f = function.at(t);
-    if (x) x[owned] = f.f - function.at(0.0).f;
-    if (v) v[owned] = f.df;
-    if (a) a[owned] = f.ddf;
+    if (x) x[owned] = s * (f.f - function.at(0.0).f);
+    if (v) v[owned] = s * f.df;
+    if (a) a[owned] = s * f.ddf;
   }
   if (X) PetscCall(VecRestoreArray(X, &x));
   if (V) PetscCall(VecRestoreArray(V, &v));

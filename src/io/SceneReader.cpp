@@ -617,7 +617,7 @@ void readPointMasses(const Field& f, BodyDesc& body) {
 
 BodyDesc readBody(const Field& f, const Context& ctx) {
   f.expectMap({"name", "element", "elements", "geometry", "section", "formulation", "stress_free", "point_masses",
-               "initial_velocity", "material_motion", "initial_stretch"});
+               "initial_velocity", "material_motion", "payout", "initial_stretch"});
   BodyDesc body;
   body.mark = f.mark();
   const Field name = f.child("name");
@@ -649,12 +649,17 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
   }
   bool ale = false;
   for (int k = 0; k < kind.blocksPerNode; ++k) ale = ale || kind.layout[k] == elements::BlockRole::MaterialCoordinate;
-  for (const char* key : {"material_motion", "initial_stretch"})
+  for (const char* key : {"material_motion", "payout", "initial_stretch"})
     if (const Field k = f.child(key); k.present() && !ale)
       k.fail(std::string(kind.name) + " has no material coordinates (an ALE kind has: AleCable2d, AleCable3d)");
   if (const Field motion = f.child("material_motion"); motion.present()) {
     body.hasMaterialMotion = true;
     body.materialMotion = readTimeFunction(motion);
+  }
+  if (const Field payout = f.child("payout"); payout.present()) {
+    if (body.hasMaterialMotion) payout.fail("give either 'material_motion' (transport) or 'payout', not both");
+    body.hasPayout = true;
+    body.payout = readTimeFunction(payout);
   }
   if (const Field stretch = f.child("initial_stretch"); stretch.present()) body.initialStretch = requirePositive(stretch);
   if (const Field v = f.child("initial_velocity"); v.present()) {
@@ -715,8 +720,8 @@ public:
         root.child("dynamics").child("integrator").fail(
             std::string(kind.name) + " (body '" + scene_.bodies[b].name + "') has a mass that changes with its material "
             "coordinates: use generalized_alpha, newmark or hht");
-      if (scene_.analysis != model::Analysis::Dynamic && scene_.bodies[b].hasMaterialMotion)
-        failAt(scene_.bodies[b].mark, "material_motion is a motion in time: only with analysis: dynamic");
+      if (scene_.analysis != model::Analysis::Dynamic && (scene_.bodies[b].hasMaterialMotion || scene_.bodies[b].hasPayout))
+        failAt(scene_.bodies[b].mark, "material_motion and payout are motions in time: only with analysis: dynamic");
     }
     if (scene_.analysis == model::Analysis::Dynamic) {
       if (!root.child("dynamics").present())

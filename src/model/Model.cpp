@@ -337,7 +337,9 @@ void Model::addSupports(Build& build) {
       for (int n = 0; n <= b.elements; ++n) {
         const int dof = b.block(n, k) * _dim;
         for (int i = 0; i < _dim; ++i) _fixed[dof + i] = 1;
-        if (scene.bodies[bi].hasMaterialMotion) _prescribed.push_back({dof, scene.bodies[bi].materialMotion});
+        if (scene.bodies[bi].hasMaterialMotion) _prescribed.push_back({dof, scene.bodies[bi].materialMotion, 1.0});
+        if (scene.bodies[bi].hasPayout && n < b.elements)  // equal spacing: node n moves by -(N - n)/N of it
+          _prescribed.push_back({dof, scene.bodies[bi].payout, -static_cast<double>(b.elements - n) / b.elements});
       }
     }
   }

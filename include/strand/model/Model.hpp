@@ -156,6 +156,7 @@ public:
   struct PrescribedCoordinate {
     int dof;  // model numbering
     TimeFunction function;
+    double scale = 1.0;  // u = scale (function(t) - function(0))
   };
   const std::vector<PrescribedCoordinate>& prescribedCoordinates() const { return _prescribed; }
   bool hasPrescribedMotion() const { return !_hubs.empty() || !_prescribed.empty(); }

@@ -63,6 +63,11 @@ struct BodyDesc {
   // material_motion'); without it the material coordinates are held (a Lagrangian mesh)
   bool hasMaterialMotion = false;
   TimeFunction materialMotion;
+  // ALE bodies: payout(t) - payout(0) [m] of material enters at node 0 (a reel or a feeder there):
+  // node 0's material coordinate falls by it, the last node's is held, the others stay equally
+  // spaced between them (seed 000 Eq. 51), so the body's unstretched length grows by the payout
+  bool hasPayout = false;
+  TimeFunction payout;
   // ALE bodies: the initial shape is the material stretched by this factor (lambda0 > 0): material
   // coordinates p = s / lambda0 at arc length s, slopes dr/dp = lambda0 t (a pretension)
   double initialStretch = 1.0;
