@@ -38,6 +38,7 @@ KindInfo infoOf() {
   i.properties = &K::properties;
   i.velocityDependent = &velocityDependentOf<K>;
   i.interpolation = &K::interpolation;
+  i.interpolationAt = &K::interpolationAt;
   i.referenceValues = &referenceValuesOf<K>;
   return i;
 }

@@ -22,12 +22,13 @@ model::Vec3 positionOnBody(const model::Model& model, const std::vector<double>&
   const int d = model.dim();
   const int perElement = 2 * b.blocksPerNode;
   double w[elements::kMaxBlocksPerElement];  // the kind's centerline interpolation weights, one per element slot
-  b.info().interpolation(b.discretization, eta, w);
+  double qe[elements::kMaxBlocksPerElement * 3];
+  for (int a = 0; a < perElement; ++a)
+    for (int i = 0; i < d; ++i) qe[a * d + i] = q[b.nodeBlocks[e * b.blocksPerNode + a] * d + i];
+  b.info().interpolationAt(b.discretization, qe, eta, w);
   model::Vec3 r{0, 0, 0};
-  for (int a = 0; a < perElement; ++a) {
-    const int blk = b.nodeBlocks[e * b.blocksPerNode + a];
-    for (int i = 0; i < d; ++i) r[i] += w[a] * q[blk * d + i];
-  }
+  for (int a = 0; a < perElement; ++a)
+    for (int i = 0; i < d; ++i) r[i] += w[a] * qe[a * d + i];
   return r;
 }
 

@@ -342,6 +342,15 @@ public:
     const double l = d.elementLength, ww[kBlocks] = {h.s[0], l * h.s[1], 0.0, h.s[2], l * h.s[3], 0.0};
     for (int k = 0; k < kBlocks; ++k) w[k] = ww[k];
   }
+  // At the element's current coordinates: the slopes' weights take the current material length
+  // L = p2 - p1 (eta is then the fraction of the element's current material).
+  static void interpolationAt(const BodyDiscretization& d, const double* q, double eta, double* w) {
+    interpolation(d, eta, w);
+    if (!q) return;
+    const double L = q[kP2] - q[kP1], h1 = math::hermite(eta).s[1], h3 = math::hermite(eta).s[3];
+    w[1] = L * h1;
+    w[4] = L * h3;
+  }
   static void consistentLoad(const Body&, const double*, double* f) {
     for (int k = 0; k < kDof; ++k) f[k] = 0.0;  // none constant: distributedLoad() (kConfigurationLoads)
   }

@@ -283,6 +283,11 @@ public:
     Centerline::shapes(eta, d.elementLength, d.gradientScale, w, dNc, Nd, dNd);
   }
 
+  // The same at the element's current coordinates q (its shape functions do not depend on them).
+  static void interpolationAt(const BodyDiscretization& d, const double*, double eta, double* w) {
+    interpolation(d, eta, w);
+  }
+
   // Consistent load of a constant force per unit length p acting on the centerline (and of a body
   // force rho g over the section, whose y-moment vanishes): f_a = int Nc_a p dx.
   static void consistentLoad(const Body& b, const double* p, double* f) {

@@ -307,6 +307,11 @@ public:
     for (int a = 0; a < 4; ++a) w[a] = sl.N[a];
   }
 
+  // The same at the element's current coordinates q (its shape functions do not depend on them).
+  static void interpolationAt(const BodyDiscretization& d, const double*, double eta, double* w) {
+    interpolation(d, eta, w);
+  }
+
   // Consistent load of a constant force per unit length p.
   static void consistentLoad(const Body& b, const double* p, double* f) { distributedLoad(b.geo, b.tab, p, f); }
 

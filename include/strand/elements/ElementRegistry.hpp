@@ -25,6 +25,9 @@ struct KindInfo {
   bool (*velocityDependent)(const SectionValues&, const BodyDiscretization&) = nullptr;
   // centerline position weights w (2 blocksPerNode) at eta in [0, 1]: r(eta) = sum_a w_a q_a
   void (*interpolation)(const BodyDiscretization&, double eta, double* w) = nullptr;
+  // the same at the element's current coordinates qElement (2 blocksPerNode x dim): an ALE
+  // element's slopes weigh with its current material length
+  void (*interpolationAt)(const BodyDiscretization&, const double* qElement, double eta, double* w) = nullptr;
   // stress_free: initial: kind-defined reference values of `elements` elements from their initial
   // coordinates q0 (elements x (2 blocksPerNode dim) values, element-major)
   std::vector<double> (*referenceValues)(const SectionValues&, const BodyDiscretization&, const double* q0,
