@@ -51,6 +51,20 @@ std::string join(const std::vector<std::string>& items) {
   return out;
 }
 
+// The kinds with material coordinates (ALE), for messages.
+std::string aleKindNames() {
+  std::vector<std::string> names;
+  for (int k = 0; k < elements::kindCount(); ++k) {
+    const elements::KindInfo& info = elements::kindInfo(k);
+    for (int b = 0; b < info.blocksPerNode; ++b)
+      if (elements::isMaterialBlock(info.layout[b])) {
+        names.push_back(info.name);
+        break;
+      }
+  }
+  return join(names);
+}
+
 std::string trim(const std::string& s) {
   const auto first = s.find_first_not_of(" \t\r\n");
   if (first == std::string::npos) return "";
@@ -648,10 +662,10 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
     readPointMasses(masses, body);
   }
   bool ale = false;
-  for (int k = 0; k < kind.blocksPerNode; ++k) ale = ale || kind.layout[k] == elements::BlockRole::MaterialCoordinate;
+  for (int k = 0; k < kind.blocksPerNode; ++k) ale = ale || elements::isMaterialBlock(kind.layout[k]);
   for (const char* key : {"material_motion", "payout", "initial_stretch"})
     if (const Field k = f.child(key); k.present() && !ale)
-      k.fail(std::string(kind.name) + " has no material coordinates (an ALE kind has: AleCable2d, AleCable3d)");
+      k.fail(std::string(kind.name) + " has no material coordinates (an ALE kind has: " + aleKindNames() + ")");
   if (const Field motion = f.child("material_motion"); motion.present()) {
     body.hasMaterialMotion = true;
     body.materialMotion = readTimeFunction(motion);

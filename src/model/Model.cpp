@@ -109,7 +109,7 @@ void Model::addBodies(Build& build) {
     b.section = bd.section;
     b.properties = info.properties(bd.section);
     bool ale = false;  // material coordinates: slopes are dr/dp = lambda0 dr/ds (never scaled by l)
-    for (int k = 0; k < info.blocksPerNode; ++k) ale = ale || info.layout[k] == elements::BlockRole::MaterialCoordinate;
+    for (int k = 0; k < info.blocksPerNode; ++k) ale = ale || elements::isMaterialBlock(info.layout[k]);
     b.discretization = {b.elementLength,
                         ale ? bd.initialStretch : scene.discretization.slopeScaling ? b.elementLength : 1.0,
                         scene.discretization.gaussPoints};
@@ -258,6 +258,7 @@ void Model::placeInitialState(Build& build) {
             q[1] = p.t[0];
             break;
           case elements::BlockRole::MaterialCoordinate:  // the unstretched arc length from node 0; padding 0
+          case elements::BlockRole::MaterialSpin:        // and the spin angle 0
             q[0] = n * b.elementLength / b.discretization.gradientScale;
             break;
           case elements::BlockRole::Position:
@@ -333,10 +334,11 @@ void Model::addSupports(Build& build) {
   for (size_t bi = 0; bi < _bodies.size(); ++bi) {
     const Body& b = _bodies[bi];
     for (int k = 0; k < b.blocksPerNode; ++k) {
-      if (b.info().layout[k] != elements::BlockRole::MaterialCoordinate) continue;
+      if (!elements::isMaterialBlock(b.info().layout[k])) continue;
       for (int n = 0; n <= b.elements; ++n) {
         const int dof = b.block(n, k) * _dim;
-        for (int i = 0; i < _dim; ++i) _fixed[dof + i] = 1;
+        _fixed[dof] = 1;
+        for (int i = elements::usedComponents(b.info().layout[k], _dim); i < _dim; ++i) _fixed[dof + i] = 1;
         if (scene.bodies[bi].hasMaterialMotion) _prescribed.push_back({dof, scene.bodies[bi].materialMotion, 1.0});
         if (scene.bodies[bi].hasPayout && n < b.elements)  // equal spacing: node n moves by -(N - n)/N of it
           _prescribed.push_back({dof, scene.bodies[bi].payout, -static_cast<double>(b.elements - n) / b.elements});

@@ -26,7 +26,7 @@ namespace {
 // The section of each kind's test, with damping when asked, and its rotary inertia rho I.
 template <class K>
 constexpr bool isAle() {
-  return std::is_same_v<K, AleCable2d> || std::is_same_v<K, AleCable3d>;
+  return std::is_same_v<K, AleCable2d> || std::is_same_v<K, AleCable3d> || std::is_same_v<K, AleBeamShaft3d>;
 }
 
 // Whether the kind has Kelvin-Voigt damping to test.
@@ -38,7 +38,10 @@ constexpr bool hasDamping() {
 template <class K>
 SectionValues sectionOf(bool damped, double* rotary) {
   SectionValues v;
-  if constexpr (isAle<K>()) {
+  if constexpr (std::is_same_v<K, AleBeamShaft3d>) {
+    v.numbers = {{"E", 2e7}, {"nu", 0.3}, {"rho", 1000.0}, {"radius", 0.02}};
+    *rotary = 0.0;
+  } else if constexpr (isAle<K>()) {
     v.numbers = {{"E", 2e7}, {"A", 1e-3}, {"I", 3e-7}, {"rho", 1000.0}};
     *rotary = 0.0;
   } else if constexpr (std::is_same_v<K, AncfCable2d> || std::is_same_v<K, AncfCable3d>) {
@@ -107,8 +110,8 @@ struct Fixture {
         if (role == BlockRole::Position) base = i == 0 ? 10.0 + node * disc.elementLength : (i == 1 ? -3.0 : 0.0);
         if (role == BlockRole::AxialGradient && i == 0) base = disc.gradientScale;
         if (role == BlockRole::TransverseGradient && i == 1) base = 1.0;
-        if (role == BlockRole::MaterialCoordinate && i == 0) base = 2.0 + node * disc.elementLength;
-        const bool padding = role == BlockRole::MaterialCoordinate && i > 0;  // held at zero
+        if (isMaterialBlock(role) && i == 0) base = 2.0 + node * disc.elementLength;
+        const bool padding = i >= usedComponents(role, D);  // held at zero
         q0[a * D + i] = base;
         u[a * D + i] = padding ? 0.0 : r(rng) * (role == BlockRole::Position ? disc.elementLength : 0.1);
         v[a * D + i] = padding ? 0.0 : 3.0 * r(rng);
@@ -134,12 +137,13 @@ struct Fixture {
 
 template <class K>
 class ElementKindTest : public ::testing::Test {};
-using Kinds = ::testing::Types<AncfCable2d, AncfCable3d, AncfBeam2dShear, AncfBeam2dLinear, AleCable2d, AleCable3d>;
+using Kinds = ::testing::Types<AncfCable2d, AncfCable3d, AncfBeam2dShear, AncfBeam2dLinear, AleCable2d, AleCable3d,
+                               AleBeamShaft3d>;
 TYPED_TEST_SUITE(ElementKindTest, Kinds);
 
 }  // namespace
 
-TEST(ElementKinds, TheTestCoversEveryRegisteredKind) { EXPECT_EQ(AllKinds::size, 6); }
+TEST(ElementKinds, TheTestCoversEveryRegisteredKind) { EXPECT_EQ(AllKinds::size, 7); }
 
 TYPED_TEST(ElementKindTest, TangentsEqualDualNumberDerivatives) {
   using K = TypeParam;
@@ -236,7 +240,7 @@ TYPED_TEST(ElementKindTest, RigidMotionsStoreNoEnergyAndGiveNoForce) {
         for (int i = 0; i < D; ++i) {
           double q = position ? t[i] : 0.0;
           for (int j = 0; j < D; ++j) q += R[i][j] * fx.q0[a * D + j];
-          u[a * D + i] = role == BlockRole::MaterialCoordinate ? 0.0 : q - fx.q0[a * D + i];  // the material stays
+          u[a * D + i] = isMaterialBlock(role) ? 0.0 : q - fx.q0[a * D + i];  // the material and its spin stay
         }
       }
       double f[N];

@@ -39,7 +39,7 @@
 namespace strand::elements {
 
 template <int D>
-class AleCable final {
+class AleCable {
   using Cable = AncfCable<D>;
 
 public:

@@ -22,7 +22,18 @@ enum class BlockRole {
   TransverseGradient,  // r_y = dr/dy across the section (a shear-deformable beam's cross-section vector)
   MaterialCoordinate,  // p: the material (unstretched arc-length) coordinate of an ALE node, in component 0;
                        // the other components are padding, held at zero
+  MaterialSpin,        // p in component 0 and the spin angle theta of the section about the centerline
+                       // in component 1 (a beam-shaft); the other components are padding
 };
+
+// A block that carries the node's material coordinate p (component 0): an ALE kind's node.
+inline constexpr bool isMaterialBlock(BlockRole r) {
+  return r == BlockRole::MaterialCoordinate || r == BlockRole::MaterialSpin;
+}
+// How many leading components of a block of role r are coordinates (the rest is padding, held).
+inline constexpr int usedComponents(BlockRole r, int dim) {
+  return r == BlockRole::MaterialCoordinate ? 1 : r == BlockRole::MaterialSpin ? 2 : dim;
+}
 
 inline constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 

@@ -5,6 +5,7 @@
 #pragma once
 #include <utility>
 
+#include "strand/elements/AleBeamShaft.hpp"
 #include "strand/elements/AleCable.hpp"
 #include "strand/elements/AncfBeam2d.hpp"
 #include "strand/elements/AncfCable.hpp"
@@ -17,7 +18,8 @@ struct KindList {
 };
 
 // The registry order is the kind index (model::Body::kind).
-using AllKinds = KindList<AncfCable2d, AncfCable3d, AncfBeam2dShear, AncfBeam2dLinear, AleCable2d, AleCable3d>;
+using AllKinds = KindList<AncfCable2d, AncfCable3d, AncfBeam2dShear, AncfBeam2dLinear, AleCable2d, AleCable3d,
+                          AleBeamShaft3d>;
 
 template <class K>
 struct KindTag {
