@@ -92,7 +92,7 @@ void writeDynamicsCheckpoint(MPI_Comm comm, const model::SceneDescription& scene
 // -restart FILE: read and check against the scene (InputError names the file and what differs).
 io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& scene, const model::Model& model,
                                const std::string& path) {
-  io::CheckpointData data = io::readCheckpoint(comm, path);
+  io::CheckpointData data = io::readCheckpoint(comm, path, static_cast<size_t>(model.numDofs()));
   const auto& sc = data.scalars;
   auto need = [&](const char* key) {
     if (!sc.count(key)) throw InputError(path + ": -restart: the checkpoint has no '" + key + "'");
