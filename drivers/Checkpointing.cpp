@@ -172,13 +172,17 @@ io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& sce
   return data;
 }
 
+void checkRestartIntegrator(const io::CheckpointData& data, const std::string& path, const solvers::Dynamics& dyn) {
+  if (data.integrator != dyn.signature())
+    throw InputError(path + ": -restart: the checkpoint was written by " + data.integrator +
+                     ", this run integrates with " + dyn.signature());
+}
+
 int resumeDynamics(MPI_Comm comm, const io::CheckpointData& data, const std::string& path, solvers::Problem& problem,
                    solvers::Dynamics& dyn, Vec X, Vec V) {
   int rank;
   MPI_Comm_rank(comm, &rank);
-  if (data.integrator != dyn.signature())
-    throw InputError(path + ": -restart: the checkpoint was written by " + data.integrator +
-                     ", this run integrates with " + dyn.signature());
+  checkRestartIntegrator(data, path, dyn);
   int missing = 0;
   if (rank == 0)
     for (const char* n : {"X", "V"}) missing += data.vectors.count(n) ? 0 : 1;

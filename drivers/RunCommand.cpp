@@ -14,6 +14,7 @@
 
 #include "Checkpointing.hpp"
 #include "Commands.hpp"
+#include "FileSafety.hpp"
 #include "Progress.hpp"
 #include "strand/core/Error.hpp"
 #include "strand/io/Checkpoint.hpp"
@@ -80,10 +81,25 @@ public:
     const bool modal = _mode == RunMode::ForceModes || _scene.analysis == model::Analysis::Modes;
     const std::string out = outputPath(_scene);
     const bool dynamic = !modal && _scene.analysis == model::Analysis::Dynamic;
+    // Everything that can refuse the run is checked before the output is opened (issue 32 item 2):
+    // the files (item 3), the checkpoint and the integrator it was written by.
+    RunFiles files = sceneFiles(_scene);
+    files.results.push_back({"the output", out});
+    files.companions = {{"the output's XDMF file", io::xdmfPathFor(out)}, {"the output's XDMF file", io::modesXdmfPathFor(out)}};
+    std::unique_ptr<solvers::Dynamics> dyn;
     if (dynamic) {
       _checkpoint = checkpointOptions(out);
-      if (!_checkpoint.restart.empty())  // bad input before any file is written
+      files.results.push_back({"-checkpoint", _checkpoint.path});
+      files.restart = _checkpoint.restart;
+    }
+    checkRunFiles(files, overwriteRequested());
+    if (dynamic) {
+      dyn = std::make_unique<solvers::Dynamics>(_problem.assembler(), _scene.dynamics);
+      PetscCallAbort(_comm, dyn->setFromOptions());
+      if (!_checkpoint.restart.empty()) {
         _restart = readRestart(_comm, _scene, _problem.model(), _checkpoint.restart);
+        checkRestartIntegrator(_restart, _checkpoint.restart, *dyn);
+      }
     }
     io::RunInfo info{_scene.file, modal ? "modes" : dynamic ? "dynamic" : "static", kVersion, m.dim()};
     _writer = std::make_unique<io::OutputWriter>(_comm, out, info, io::bodyLayouts(m, _scene.output.samplesPerElement));
@@ -97,7 +113,7 @@ public:
     int code = kExitSuccess;
     std::string failure;
     if (dynamic) {
-      code = dynamicSolve(X, &failure);  // writes the initial frame itself
+      code = dynamicSolve(*dyn, X, &failure);  // writes the initial frame itself
     } else {
       writeFrame(X, 0.0);
       if (!modal || hasLoads(_scene)) code = staticSolve(X, &failure);
@@ -161,13 +177,11 @@ private:
   // Time integration from the reference shape at rest; a frame every output_every steps and at the
   // end, the energy monitor, Newton iterations, the step size and the rejected steps (since the start)
   // every step (/series).
-  int dynamicSolve(Vec X, std::string* failure) {
+  int dynamicSolve(solvers::Dynamics& dyn, Vec X, std::string* failure) {
     const model::DynamicsDesc& d = _scene.dynamics;
     Vec V;
     PetscCallAbort(_comm, VecDuplicate(X, &V));
     PetscCallAbort(_comm, _problem.assembler().initialVelocity(V));
-    solvers::Dynamics dyn(_problem.assembler(), d);
-    PetscCallAbort(_comm, dyn.setFromOptions());
     if (!_checkpoint.restart.empty()) {
       _firstStep = resumeDynamics(_comm, _restart, _checkpoint.restart, _problem, dyn, X, V);
       say("restart from " + _checkpoint.restart + " at t = " + fmt("%.6g", _restart.scalars.at("time")) + " s, step " +
@@ -364,7 +378,12 @@ int runScene(const char* scenePath, RunMode mode) {
       if (mode == RunMode::ForceModes)
         throw InputError(scene.hubBeam.mark.where() + ": 'strand modes' needs a body scene; a hub_beam scene runs "
                          "its dynamics with 'strand run'");
-      return runHubBeam(comm, scene, outputPath(scene));
+      const std::string out = outputPath(scene);
+      RunFiles files = sceneFiles(scene);
+      files.results.push_back({"the output", out});
+      files.companions.push_back({"the output's XDMF file", io::xdmfPathFor(out)});
+      checkRunFiles(files, overwriteRequested());
+      return runHubBeam(comm, scene, out);
     }
     SceneRun run(comm, scene, mode);
     return run.execute();

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "Commands.hpp"
+#include "FileSafety.hpp"
 #include "Progress.hpp"
 #include "strand/core/Error.hpp"
 #include "strand/io/SceneReader.hpp"
@@ -39,6 +40,10 @@ int runSweepScene(const char* scenePath) {
       throw InputError(scene.file + ": no 'sweep' section: `strand sweep` needs sweep: {parameter, from, to, "
                        "points} (docs/scene-reference.md#sweep); use `strand modes` for one point");
     const std::string out = outputPath(scene);
+    RunFiles files = sceneFiles(scene);
+    files.results.push_back({"the output", out});
+    files.companions = {{"the sweep's CSV file", io::sweepCsvPath(out)}, {"the sweep's CSV file", io::sweepEventsCsvPath(out)}};
+    checkRunFiles(files, overwriteRequested());
     int size;
     MPI_Comm_size(comm, &size);
     say("strand " + std::string(kVersion) + ": " + scene.file + ": sweep of " + std::to_string(scene.sweep.points) +

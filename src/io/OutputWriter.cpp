@@ -420,6 +420,16 @@ struct OutputWriter::Impl {
   }
 };
 
+std::string xdmfPathFor(const std::string& h5Path) {
+  const std::filesystem::path p(h5Path);
+  return (p.parent_path() / (p.stem().string() + ".xmf")).string();
+}
+
+std::string modesXdmfPathFor(const std::string& h5Path) {
+  const std::filesystem::path p(h5Path);
+  return (p.parent_path() / (p.stem().string() + "_modes.xmf")).string();
+}
+
 OutputWriter::OutputWriter(MPI_Comm comm, std::string path, RunInfo info, std::vector<BodyLayout> bodies)
     : impl_(std::make_unique<Impl>()) {
   Impl& I = *impl_;
@@ -428,12 +438,9 @@ OutputWriter::OutputWriter(MPI_Comm comm, std::string path, RunInfo info, std::v
   I.path = std::move(path);
   I.info = std::move(info);
   I.bodies = std::move(bodies);
-  namespace fs = std::filesystem;
-  const fs::path p(I.path);
-  const std::string stem = p.stem().string();
-  I.xdmfPath = (p.parent_path() / (stem + ".xmf")).string();
-  I.modesXdmfPath = (p.parent_path() / (stem + "_modes.xmf")).string();
-  I.h5Ref = xmlEscape(p.filename().string());
+  I.xdmfPath = xdmfPathFor(I.path);
+  I.modesXdmfPath = modesXdmfPathFor(I.path);
+  I.h5Ref = xmlEscape(std::filesystem::path(I.path).filename().string());
   I.collective("create", [&] {
     if (I.path.empty()) throw InputError("cannot create output file '': empty file name");
     I.create();

@@ -425,6 +425,7 @@ struct Context {
   std::string file;   // for messages
   fs::path sceneDir;  // polyline CSV files are relative to it
   int dim = 3;
+  std::vector<std::string>* inputs = nullptr;  // SceneDescription::inputFiles: every file read
 };
 
 void readLine(const Field& f, const Context& ctx, GeometryDesc& g) {
@@ -457,6 +458,7 @@ std::vector<int> readPolylineCsv(const Field& f, const Context& ctx, std::vector
   if (path.is_relative()) path = ctx.sceneDir / path;
   std::ifstream in(path);
   if (!in || fs::is_directory(path)) f.fail("cannot open polyline file '" + path.string() + "'");
+  if (ctx.inputs) ctx.inputs->push_back(path.string());
   std::vector<int> lines;
   std::string row;
   for (int lineNo = 1; std::getline(in, row); ++lineNo) {
@@ -642,7 +644,7 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
 
 class SceneParser {
 public:
-  explicit SceneParser(const std::string& file) : ctx_{file, fs::path(file).parent_path(), 3} {
+  explicit SceneParser(const std::string& file) : ctx_{file, fs::path(file).parent_path(), 3, &scene_.inputFiles} {
     scene_.file = file;
   }
 

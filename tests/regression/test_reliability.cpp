@@ -102,3 +102,77 @@ with h5py.File(out, 'r+') as f:
   }
   fs::remove_all(dir);
 }
+
+// Item 2: a restart refused for a mismatch (here the checkpoint's rho_inf) is refused before any
+// output is opened: an existing result given with -o keeps its frames byte for byte, and without -o
+// no <stem>_restart.h5 or .xmf is left behind. (Before: the 6-frame file was left with 0 frames, and
+// an empty <stem>_restart.h5 and .xmf stayed.)
+TEST(Reliability, ARefusedRestartLeavesEveryOutputAsItWas) {
+  const fs::path dir = scratchDir("refused-restart");
+  writeFile(dir / "p.yaml", kPendulum);
+  std::string other = kPendulum;
+  other.replace(other.find("rho_inf: 0.9"), 12, "rho_inf: 0.8");
+  writeFile(dir / "q.yaml", other);
+  const fs::path result = dir / "result.h5", ckpt = dir / "result.ckpt.h5";
+  auto r = runCommand(run("run " + (dir / "p.yaml").string() + " -o " + result.string() + " -checkpoint_every 20"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::string before = readText(result), xmf = readText(dir / "result.xmf");
+  auto x = runCommand(run("run " + (dir / "q.yaml").string() + " -restart " + ckpt.string() + " -o " + result.string() +
+                          " -overwrite"));
+  EXPECT_EQ(x.exitCode, 2) << x.output;
+  EXPECT_NE(x.output.find("the checkpoint was written by generalized-alpha rho_inf 0.9"), std::string::npos) << x.output;
+  EXPECT_TRUE(readText(result) == before) << "the refused restart changed " << result;
+  EXPECT_EQ(readText(dir / "result.xmf"), xmf);
+  if (haveH5py()) {
+    auto h = runCommand("/usr/bin/python3 -c \"import h5py; print(h5py.File('" + result.string() +
+                        "')['frames'].attrs['count'])\"");
+    EXPECT_EQ(h.output, "6\n");
+  }
+  x = runCommand(run("run " + (dir / "q.yaml").string() + " -restart " + ckpt.string()) + " 2>&1; ls " + dir.string());
+  EXPECT_EQ(x.output.find("q_restart"), std::string::npos) << x.output;
+  fs::remove_all(dir);
+}
+
+// Item 3: no output replaces an input of the run (scene, polyline file, -restart checkpoint), two
+// outputs are never the same file, and an existing result is replaced only with -overwrite; each
+// refusal is exit code 2 with the file named and the file unchanged. (Before, all exit 0:
+// -checkpoint X -o X replaced the output by the checkpoint, -restart C -o C destroyed the
+// checkpoint, output.file: scene.yaml turned the scene into HDF5, a second run replaced the first.)
+TEST(Reliability, NoOutputReplacesAnInputOrAnEarlierResult) {
+  const fs::path dir = scratchDir("overwrite");
+  const fs::path scene = dir / "p.yaml", result = dir / "p.h5";
+  writeFile(scene, kPendulum);
+  auto expectRefused = [&](const std::string& args, const fs::path& kept, const std::string& message) {
+    const std::string before = readText(kept);
+    auto x = runCommand("cd " + dir.string() + " && " + run(args));
+    EXPECT_EQ(x.exitCode, 2) << args << ": " << x.output;
+    EXPECT_NE(x.output.find(message), std::string::npos) << args << ": " << x.output;
+    EXPECT_TRUE(readText(kept) == before) << args << " changed " << kept;
+  };
+  auto r = runCommand(run("run " + scene.string() + " -o " + result.string() + " -checkpoint_every 20"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  writeFile(dir / "x.h5", "a file of the user");
+  expectRefused("run p.yaml -checkpoint x.h5 -o x.h5", dir / "x.h5", "-checkpoint x.h5: the same file as the output");
+  expectRefused("run p.yaml -restart p.ckpt.h5 -o p.ckpt.h5 -overwrite", dir / "p.ckpt.h5",
+                "the output p.ckpt.h5: this output would replace the -restart checkpoint");
+  expectRefused("run p.yaml -o ./p.yaml -overwrite", scene, "this output would replace the scene");
+  expectRefused("run p.yaml -checkpoint p.yaml -o y.h5", scene, "-checkpoint p.yaml: this output would replace the scene");
+  std::string own = kPendulum;
+  writeFile(dir / "own.yaml", own + "output: {file: own.yaml}\n");
+  expectRefused("run own.yaml -overwrite", dir / "own.yaml", "the output own.yaml: this output would replace the scene");
+  std::string line = kPendulum;
+  line.replace(line.find("{kind: line, start: [0, 0], end: [1, 0]}"), 40, "{kind: polyline, file: pts.csv}");
+  writeFile(dir / "line.yaml", line);
+  writeFile(dir / "pts.csv", "0, 0\n0.5, 0\n1, 0\n");
+  expectRefused("run line.yaml -o pts.csv", dir / "pts.csv", "this output would replace a polyline file of the scene");
+  // a second run into the same result: refused, then replaced with -overwrite
+  expectRefused("run p.yaml -o p.h5", result, "the output p.h5: the file exists (an earlier result?); nothing was "
+                                              "changed. Pass -overwrite to replace it");
+  auto again = runCommand("cd " + dir.string() + " && " + run("run p.yaml -o p.h5 -overwrite"));
+  EXPECT_EQ(again.exitCode, 0) << again.output;
+  // a restart may keep continuing its own checkpoint (-checkpoint C -restart C): a job chain
+  auto chain = runCommand("cd " + dir.string() + " && " +
+                          run("run p.yaml -restart p.ckpt.h5 -checkpoint p.ckpt.h5 -checkpoint_every 5 -o chain.h5"));
+  EXPECT_EQ(chain.exitCode, 0) << chain.output;
+  fs::remove_all(dir);
+}

@@ -67,6 +67,10 @@ struct RunInfo {
   int dimension = 3;
 };
 
+// The XDMF files an OutputWriter writes next to `h5Path`: <stem>.xmf and <stem>_modes.xmf.
+std::string xdmfPathFor(const std::string& h5Path);
+std::string modesXdmfPathFor(const std::string& h5Path);
+
 class OutputWriter {
 public:
   // Creates (truncates) `path` and writes the root attributes, /bodies and an empty <stem>.xmf.

@@ -269,6 +269,7 @@ struct HubBeamDesc {
 
 struct SceneDescription {
   std::string file;  // path of the scene file
+  std::vector<std::string> inputFiles;  // the other files it reads (polyline CSV), as opened
   Analysis analysis = Analysis::Static;
   int dimension = 3;
   std::vector<BodyDesc> bodies;
