@@ -37,8 +37,8 @@ int runSweepScene(const char* scenePath) {
   return guarded(comm, [&] {
     const model::SceneDescription scene = io::readScene(scenePath);
     if (!scene.sweep.present)
-      throw InputError(scene.file + ": no 'sweep' section: `strand sweep` needs sweep: {parameter, from, to, "
-                       "points} (docs/scene-reference.md#sweep); use `strand modes` for one point");
+      throw InputError(scene.sweep.mark.where() + ": no 'sweep' section: `strand sweep` needs sweep: {parameter, from, "
+                       "to, points} (docs/scene-reference.md#sweep); use `strand modes` for one point");
     const std::string out = outputPath(scene);
     RunFiles files = sceneFiles(scene);
     files.results.push_back({"the output", out});

@@ -8,9 +8,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -33,6 +35,10 @@ using model::Vec3;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRelTol = 1e-12;  // "zero" for lengths and angles, relative to the coordinates
+// Input files are read whole into memory: bounded. yaml-cpp keeps a few hundred bytes per scalar,
+// so a 16 MB scene can take a few GB; a CSV row costs 24 bytes per point.
+constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t(16) << 20;
+constexpr std::uintmax_t kMaxPolylineBytes = std::uintmax_t(256) << 20;
 
 // ------------------------------------------------------------------------------------------------
 // Text and vector helpers
@@ -50,10 +56,72 @@ std::string join(const std::vector<std::string>& items) {
   return out;
 }
 
+// The length of the UTF-8 sequence that starts at s[i] (1-4), or 0 if it is not valid UTF-8
+// (overlong forms, surrogates and code points above U+10FFFF included).
+size_t utf8Length(const std::string& s, size_t i) {
+  const auto byte = [&](size_t k) { return k < s.size() ? static_cast<unsigned char>(s[k]) : 0u; };
+  const unsigned c = byte(i);
+  const auto cont = [&](size_t k) { return (byte(k) & 0xC0u) == 0x80u; };
+  if (c < 0x80) return 1;
+  if (c >= 0xC2 && c <= 0xDF) return cont(i + 1) ? 2 : 0;
+  if (c >= 0xE0 && c <= 0xEF) {
+    const unsigned c1 = byte(i + 1);
+    if ((c == 0xE0 && c1 < 0xA0) || (c == 0xED && c1 > 0x9F)) return 0;  // overlong, surrogate
+    return cont(i + 1) && cont(i + 2) ? 3 : 0;
+  }
+  if (c >= 0xF0 && c <= 0xF4) {
+    const unsigned c1 = byte(i + 1);
+    if ((c == 0xF0 && c1 < 0x90) || (c == 0xF4 && c1 > 0x8F)) return 0;  // overlong, > U+10FFFF
+    return cont(i + 1) && cont(i + 2) && cont(i + 3) ? 4 : 0;
+  }
+  return 0;
+}
+
+// Empty when `s` is UTF-8 text without control characters, else the reason.
+std::string textProblem(const std::string& s) {
+  for (size_t i = 0; i < s.size();) {
+    const size_t n = utf8Length(s, i);
+    char b[96];
+    if (n == 0) {
+      std::snprintf(b, sizeof b, "not UTF-8 text (byte 0x%02x at offset %zu)", static_cast<unsigned char>(s[i]), i);
+      return b;
+    }
+    if (n == 1 && (static_cast<unsigned char>(s[i]) < 0x20 || s[i] == 0x7f)) {
+      std::snprintf(b, sizeof b, "control character 0x%02x at offset %zu", static_cast<unsigned char>(s[i]), i);
+      return b;
+    }
+    i += n;
+  }
+  return "";
+}
+
 std::string trim(const std::string& s) {
   const auto first = s.find_first_not_of(" \t\r\n");
   if (first == std::string::npos) return "";
   return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+// A value as a message may show it: bytes that are not UTF-8 text or are control characters become
+// \xNN, and anything beyond `max` characters is cut ("... (N bytes)"): an error message must not
+// echo a 2 MB value (issue 32 item 10).
+std::string printable(const std::string& s, size_t max = 60) {
+  std::string out;
+  size_t i = 0;
+  while (i < s.size() && out.size() < max) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const size_t n = utf8Length(s, i);
+    if (n == 0 || c < 0x20 || c == 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02x", c);
+      out += b;
+      ++i;
+    } else {
+      out.append(s, i, n);
+      i += n;
+    }
+  }
+  if (i < s.size()) out += "... (" + std::to_string(s.size()) + " bytes)";
+  return out;
 }
 
 // What a node holds, for "expected X (got Y)" messages.
@@ -61,9 +129,7 @@ std::string describe(const YAML::Node& n) {
   if (!n.IsDefined() || n.IsNull()) return "nothing";
   if (n.IsMap()) return "a map";
   if (n.IsSequence()) return "a list";
-  std::string s = n.Scalar();
-  if (s.size() > 40) s = s.substr(0, 37) + "...";
-  return "'" + s + "'";
+  return "'" + printable(n.Scalar(), 40) + "'";
 }
 
 Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -98,7 +164,8 @@ std::string vectorProblem(const std::vector<double>& v, int dim) {
 Vec3 toVec3(const std::vector<double>& v) { return {v[0], v[1], v.size() > 2 ? v[2] : 0.0}; }
 
 [[noreturn]] void failAt(const SourceMark& mark, const std::string& reason) {
-  throw InputError(mark.where() + ": " + reason);
+  constexpr size_t kMax = 2000;  // the longest list of allowed keys is far shorter
+  throw InputError(mark.where() + ": " + (reason.size() > kMax ? reason.substr(0, kMax) + "... (cut)" : reason));
 }
 
 // 1-based line of a node, or `fallback` when yaml-cpp does not know it.
@@ -169,12 +236,34 @@ public:
     if (!std::isfinite(v)) fail("must be a finite number (got " + describe(node_) + ")");
     return v;
   }
-  long integer(const char* what = "an integer") const { return scalarAs<long>(what); }
+  // A decimal integer: yaml-cpp reads YAML 1.1's 010 as octal 8 and 0x10 as 16; a scene is
+  // decimal, and a leading zero is refused rather than guessed (issue 32 item 10).
+  long integer(const char* what = "an integer") const {
+    const std::string t = scalarAs<std::string>(what);
+    const std::string expected = std::string("expected ") + what + " (got " + describe(node_) + ")";
+    const size_t sign = !t.empty() && (t[0] == '+' || t[0] == '-') ? 1 : 0;
+    if (t.size() > sign + 1 && t[sign] == '0' && std::isdigit(static_cast<unsigned char>(t[sign + 1])))
+      fail(expected + ": a leading 0 (YAML 1.1 reads " + printable(t, 20) + " as an octal number); write it without");
+    long v = 0;
+    const char* begin = t.data() + (sign == 1 && t[0] == '+' ? 1 : 0);
+    const auto [end, ec] = std::from_chars(begin, t.data() + t.size(), v, 10);
+    if (t.size() == sign || ec != std::errc() || end != t.data() + t.size()) fail(expected);
+    return v;
+  }
   bool boolean() const { return scalarAs<bool>("true or false"); }
-  std::string text() const { return scalarAs<std::string>("a string"); }
+  // Any text value: UTF-8 without control characters (names become HDF5 groups and XML, issue 32
+  // item 10).
+  std::string text() const {
+    std::string t = scalarAs<std::string>("a string");
+    if (const std::string problem = textProblem(t); !problem.empty()) fail(problem);
+    return t;
+  }
 
 private:
-  std::string childKey(const std::string& name) const { return key_.empty() ? name : key_ + "." + name; }
+  std::string childKey(const std::string& name) const {
+    const std::string shown = printable(name, 60);
+    return key_.empty() ? shown : key_ + "." + shown;
+  }
   void requirePresent() const {
     if (!present()) fail("missing required value");
   }
@@ -237,7 +326,7 @@ const auto& pick(const Field& f, const char* what, const Table& table) {
     if (s == entry.name) return entry;
     names.emplace_back(entry.name);
   }
-  f.fail("unknown " + std::string(what) + " '" + s + "'; allowed: " + join(names));
+  f.fail("unknown " + std::string(what) + " '" + printable(s) + "'; allowed: " + join(names));
 }
 
 // A position, force or direction (see vectorProblem).
@@ -313,7 +402,7 @@ model::TimeFunction readTimeFunction(const Field& f) {
     for (size_t i = 1; i < tf.times.size(); ++i)
       if (!(tf.times[i] > tf.times[i - 1])) f.child("time").fail("times must increase (entry " + std::to_string(i) + ")");
   } else {
-    f.child("function").fail("unknown time function '" + kind + "'; allowed: constant, linear, ramp, sine, spin_up, table");
+    f.child("function").fail("unknown time function '" + printable(kind) + "'; allowed: constant, linear, ramp, sine, spin_up, table");
   }
   return tf;
 }
@@ -458,6 +547,11 @@ std::vector<int> readPolylineCsv(const Field& f, const Context& ctx, std::vector
   if (path.is_relative()) path = ctx.sceneDir / path;
   std::ifstream in(path);
   if (!in || fs::is_directory(path)) f.fail("cannot open polyline file '" + path.string() + "'");
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) f.fail("'" + path.string() + "' is not a regular file");
+  if (const auto size = fs::file_size(path, ec); ec || size > kMaxPolylineBytes)
+    f.fail("'" + path.string() + "' has " + std::to_string(size) + " bytes, more than a polyline file may have (" +
+           std::to_string(kMaxPolylineBytes >> 20) + " MB)");
   if (ctx.inputs) ctx.inputs->push_back(path.string());
   std::vector<int> lines;
   std::string row;
@@ -472,7 +566,7 @@ std::vector<int> readPolylineCsv(const Field& f, const Context& ctx, std::vector
       double x = 0.0;
       const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), x);
       if (cell.empty() || ec != std::errc() || end != cell.data() + cell.size() || !std::isfinite(x))
-        f.fail(where + "expected comma-separated numbers x,y or x,y,z (got '" + row + "')");
+        f.fail(where + "expected comma-separated numbers x,y or x,y,z (got '" + printable(row) + "')");
       v.push_back(x);
     }
     if (const std::string problem = vectorProblem(v, ctx.dim); !problem.empty()) f.fail(where + problem);
@@ -686,6 +780,8 @@ public:
     }
     if (const Field f = root.child("output"); f.present()) readOutput(f);
     checkCatenaryDefaults();
+    checkOutputNames();
+    if (!scene_.sweep.present) scene_.sweep.mark = {ctx_.file, root.line(), "sweep"};  // `strand sweep` names it
     return scene_;
   }
 
@@ -954,7 +1050,7 @@ private:
       if (b.name == wanted) return b;
       names.push_back(b.name);
     }
-    name.fail("no body named '" + wanted + "'; bodies: " + join(names));
+    name.fail("no body named '" + printable(wanted) + "'; bodies: " + join(names));
   }
 
   // The `body` and `node` keys of `f` (which the caller has checked for allowed keys).
@@ -1016,7 +1112,7 @@ private:
           const std::string c = e.text();
           const int k = c == "x" ? 0 : c == "y" ? 1 : (D == 2 && c == "phi") || (D == 3 && c == "z") ? 2 : -1;
           if (k < 0)
-            e.fail("unknown coordinate '" + c + (D == 2 ? "'; allowed: x, y, phi" : "'; allowed: x, y, z (a 3D body's orientation is held by joints)"));
+            e.fail("unknown coordinate '" + printable(c) + (D == 2 ? "'; allowed: x, y, phi" : "'; allowed: x, y, z (a 3D body's orientation is held by joints)"));
           if (std::find(r.fixed.begin(), r.fixed.end(), k) != r.fixed.end()) e.fail("listed twice");
           r.fixed.push_back(k);
         }
@@ -1230,6 +1326,18 @@ private:
       scene_.output.samplesPerElement = requireIntAtLeast(samples, 1);
   }
 
+  // Body and rigid-body names become HDF5 group and series names and XDMF text: no '/' or ':'
+  // (OutputWriter refused them later without a line), not "." or ".." (issue 32 item 10).
+  void checkOutputNames() const {
+    auto check = [](const std::string& name, const SourceMark& mark) {
+      if (name == "." || name == ".." || name.find_first_of("/:") != std::string::npos)
+        failAt({mark.file, mark.line, mark.key + ".name"},
+               "'" + printable(name) + "' cannot name an output group: no '/' or ':', not '.' or '..'");
+    };
+    for (const BodyDesc& b : scene_.bodies) check(b.name, b.mark);
+    for (const model::RigidBodyDesc& r : scene_.rigidBodies) check(r.name, r.mark);
+  }
+
   // A catenary without sag_direction hangs along gravity (or -y / -z without gravity); that
   // direction must not be parallel to its chord.
   void checkCatenaryDefaults() const {
@@ -1256,7 +1364,13 @@ model::SceneDescription parseScene(const std::string& yamlText, const std::strin
   const std::string& file = fileNameForMessages;
   YAML::Node root;
   try {
-    root = YAML::Load(yamlText);
+    // every document, so that a second one is refused rather than ignored (issue 32 item 10)
+    const std::vector<YAML::Node> documents = YAML::LoadAll(yamlText);
+    for (size_t k = 1; k < documents.size(); ++k)
+      if (documents[k].IsDefined() && !documents[k].IsNull())
+        throw InputError(file + ":" + std::to_string(lineOf(documents[k], 1)) +
+                         ": (document): a second YAML document ('---') is not read; a scene is one document");
+    if (!documents.empty()) root = documents.front();
   } catch (const YAML::Exception& e) {
     throw InputError(file + ":" + std::to_string(e.mark.line + 1) + ": (syntax): " + e.msg);
   }
@@ -1275,9 +1389,17 @@ model::SceneDescription readScene(const std::string& path) {
     const std::string why = isDir ? " (it is a directory)" : !fs::exists(path, ec) ? " (no such file)" : "";
     throw InputError(path + ":0: (file): cannot open scene file '" + path + "'" + why);
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseScene(text.str(), path);
+  // bounded: a device or a pipe is not a scene (/dev/zero read without end, issue 32 item 9)
+  if (!fs::is_regular_file(path, ec))
+    throw InputError(path + ":0: (file): not a regular file; a scene is a YAML text file");
+  const auto size = fs::file_size(path, ec);
+  if (ec || size > kMaxSceneBytes)
+    throw InputError(path + ":0: (file): " + std::to_string(size) + " bytes, more than a scene may have (" +
+                     std::to_string(kMaxSceneBytes >> 20) + " MB); put long polylines in a CSV file (geometry.file)");
+  std::string text(size, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(size));
+  text.resize(static_cast<size_t>(in.gcount()));
+  return parseScene(text, path);
 }
 
 }  // namespace strand::io

@@ -176,3 +176,14 @@ TEST(Reliability, NoOutputReplacesAnInputOrAnEarlierResult) {
   EXPECT_EQ(chain.exitCode, 0) << chain.output;
   fs::remove_all(dir);
 }
+
+// Item 10: `strand sweep` on a scene without a sweep section names the scene's line (its first key)
+// and the missing key. (Before: "<file>: no 'sweep' section", no line.)
+TEST(Reliability, SweepWithoutASweepSectionNamesALine) {
+  const fs::path dir = scratchDir("no-sweep");
+  auto r = runCommand(run("sweep " + sourceDir() + "/meshes/cantilever-modes.yaml -o " + (dir / "x.h5").string()));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("meshes/cantilever-modes.yaml:4: sweep: no 'sweep' section"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "x.h5"));
+  fs::remove_all(dir);
+}
