@@ -17,6 +17,7 @@
 
 #include "strand/core/Error.hpp"
 
+#include "CommittedFile.hpp"
 #include "Hdf5.hpp"
 
 namespace strand::io {
@@ -239,7 +240,10 @@ struct OutputWriter::Impl {
                                     "' needs elements, nodes, coordsPerNode >= 1 and pointsPerBody >= 2");
     }
 
-    hid_t fid = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    // written through the committing driver: the result changes only by atomic commits
+    // (CommittedFile.hpp), so a killed run leaves the file of its last commit
+    Hid fapl(committedFileAccess(), H5Pclose);
+    hid_t fid = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
     if (fid < 0) throw InputError("cannot create output file '" + path + "': " + hdf5Reason());
     file = Hid(fid, H5Fclose);
 
@@ -277,6 +281,7 @@ struct OutputWriter::Impl {
       writeAttribute(framesGroup.get(), "count", 0);
       Hid seriesGroup = group(root, "series");
       check(H5Fflush(root, H5F_SCOPE_GLOBAL), "cannot flush");
+      commit(root);
       // An empty (valid) collection now, so a run that dies before its first frame still leaves
       // a consistent pair, and an unwritable .xmf location is reported at creation.
       writeFileAtomically(xdmfPath, xdmfDocument("frames", ""));
@@ -301,7 +306,8 @@ struct OutputWriter::Impl {
       }
       updateAttribute(framesGroup.get(), "count", frames + 1);
       check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "cannot flush");
-      // The .xmf only ever names data that is already flushed.
+      commit(file.get());
+      // The .xmf only ever names data that is already committed.
       writeFileAtomically(xdmfPath, xdmfDocument("frames", frameGrids + grid));
     } catch (...) {
       // Best effort: leave the file as it was before this frame, so that the .xmf (still the old
@@ -378,6 +384,7 @@ struct OutputWriter::Impl {
       }
       modes.close("cannot close group '/modes'");
       check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "cannot flush");
+      commit(file.get());
       writeFileAtomically(modesXdmfPath, xdmfDocument("modes", grids));
     } catch (...) {
       H5Ldelete(file.get(), "modes", H5P_DEFAULT);  // best effort: allow a retry
@@ -413,7 +420,12 @@ struct OutputWriter::Impl {
     series.clear();
     attempt([&] { framesGroup.close("cannot close group '/frames'"); });
     if (file) {
-      attempt([&] { check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "cannot flush"); });
+      bool flushed = false;
+      attempt([&] {
+        check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "cannot flush");
+        flushed = true;
+      });
+      if (flushed) attempt([&] { commit(file.get()); });
       attempt([&] { file.close("cannot close"); });
     }
     if (!firstError.empty()) throw Hdf5Failure(firstError);

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 
+#include "CommittedFile.hpp"
 #include "Hdf5.hpp"
 
 namespace strand::io {
@@ -33,7 +34,9 @@ std::vector<T> table(const std::vector<std::vector<T>>& t, size_t n, T pad) {
 
 void writeHdf5(const std::string& path, const SweepInfo& info, const solvers::SweepResult& r) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  Hid file(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "cannot create file"), H5Fclose);
+  // one commit at the end (CommittedFile.hpp): a run killed while writing leaves no half file
+  Hid fapl(committedFileAccess(), H5Pclose);
+  Hid file(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "cannot create file"), H5Fclose);
   const hid_t f = file.get();
   const hsize_t P = r.parameter.size(), n = modeCount(r);
   writeAttribute(f, "strand_version", info.version);
@@ -124,6 +127,7 @@ void writeHdf5(const std::string& path, const SweepInfo& info, const solvers::Sw
   ev.close("cannot close group '/sweep/events'");
   g.close("cannot close group '/sweep'");
   check(H5Fflush(f, H5F_SCOPE_GLOBAL), "cannot flush");
+  commit(f);
   file.close("cannot close");
 }
 
