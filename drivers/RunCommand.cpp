@@ -385,6 +385,7 @@ int runScene(const char* scenePath, RunMode mode) {
       checkRunFiles(files, overwriteRequested());
       return runHubBeam(comm, scene, out);
     }
+    if (mode == RunMode::ForceModes) io::requireModalScene(scene);
     SceneRun run(comm, scene, mode);
     return run.execute();
   });

@@ -416,6 +416,10 @@ struct Choice {
   E value;
 };
 
+const char* const kNoConstrainedModes =
+    "modal analysis of rigid bodies and joints is not supported yet (analysis: modes and strand modes); use static "
+    "or dynamic";
+
 const Choice<model::Analysis> kAnalyses[] = {{"static", model::Analysis::Static},
                                              {"modes", model::Analysis::Modes},
                                              {"dynamic", model::Analysis::Dynamic}};
@@ -748,6 +752,10 @@ public:
     root.expectMap({"analysis", "dimension", "discretization", "bodies", "rigid_bodies", "joints", "supports",
                     "junctions", "loads", "static", "modes", "rotation", "sweep", "dynamics", "output", "hub_beam"});
     scene_.analysis = pick(root.child("analysis"), "analysis", kAnalyses).value;
+    scene_.analysisMark = root.child("analysis").mark();
+    if (scene_.analysis == model::Analysis::Modes &&
+        (root.child("rigid_bodies").present() || root.child("joints").present()))
+      failAt(scene_.analysisMark, kNoConstrainedModes);  // before their own checks: as `strand modes` says
     if (const Field f = root.child("hub_beam"); f.present()) return parseHubBeamScene(root, f);
     scene_.dimension = ctx_.dim = requireIntInRange(root.child("dimension"), 2, 3);
     if (const Field f = root.child("discretization"); f.present()) readDiscretization(f);
@@ -755,8 +763,7 @@ public:
     readBodies(root.child("bodies"), rigid.present());
     if (rigid.present()) readRigidBodies(rigid);
     if (const Field f = root.child("joints"); f.present()) readJoints(f);
-    if ((rigid.present() || root.child("joints").present()) && scene_.analysis == model::Analysis::Modes)
-      root.child("analysis").fail("modal analysis of rigid bodies and joints is not supported yet; use static or dynamic");
+
     if (const Field f = root.child("supports"); f.present()) readSupports(f);
     if (const Field f = root.child("junctions"); f.present()) readJunctions(f);
     if (const Field f = root.child("loads"); f.present()) readLoads(f);
@@ -1359,6 +1366,13 @@ private:
 };
 
 }  // namespace
+
+void requireModalScene(const model::SceneDescription& scene) {
+  // Modes of a constrained system need its static equilibrium first, and the static Newton of a
+  // mechanism starts singular (no stiffness for the rigid motion while the multipliers are 0):
+  // refused here, the same way for `analysis: modes` and `strand modes` (issue 32 item 6).
+  if (!scene.rigidBodies.empty() || !scene.joints.empty()) failAt(scene.analysisMark, kNoConstrainedModes);
+}
 
 model::SceneDescription parseScene(const std::string& yamlText, const std::string& fileNameForMessages) {
   const std::string& file = fileNameForMessages;
