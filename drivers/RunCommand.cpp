@@ -312,10 +312,12 @@ private:
       PetscCallAbort(_comm, _problem.assembler().gatherToRoot(Y, q));
       shapes.push_back(_rank == 0 ? io::makeFrames(_problem.model(), q, _scene.output.samplesPerElement)
                                   : std::vector<io::BodyFrame>{});
-      say("mode " + std::to_string(k + 1) + ": " + fmt("%.8g Hz", hz.back()) + "  (omega " +
-          fmt("%.8g rad/s", r.omega[k]) + ", omega_bar " + fmt("%.8g", r.omega[k] * T) + ", residual " +
-          fmt("%.1e", r.relativeResidual[k]) + ")");
+      say("mode " + std::to_string(k + 1) + ": " + fmt("%.8g Hz", hz.back()) + "  (" +
+          (r.rigid[k] ? std::string("rigid-body mode") : "omega " + fmt("%.8g rad/s", r.omega[k]) + ", omega_bar " +
+                                                             fmt("%.8g", r.omega[k] * T)) +
+          ", residual " + fmt("%.1e", r.relativeResidual[k]) + ")");
     }
+    if (!r.note.empty()) say("note: " + r.note);
     _writer->writeModes(hz, shapes);
     VecDestroy(&Y);
     solvers::destroyModes(&r);

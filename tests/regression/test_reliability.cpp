@@ -191,7 +191,7 @@ TEST(Reliability, SweepWithoutASweepSectionNamesALine) {
 // Item 6: modal analysis of a scene with rigid bodies or joints is refused with exit code 2 and the
 // same message on both paths, `strand modes SCENE` and `analysis: modes` (before: exit 76 in
 // MUMPS for compound-pendulum and heavy-top, 91 for spin-up-joint, while analysis: modes gave a
-// clean exit 2).
+// clean exit 2). Item 7 on the command line: a free beam's rigid-body modes are printed as such.
 TEST(Reliability, ModesOfConstrainedScenesAreRefusedTheSameWayOnBothPaths) {
   const fs::path dir = scratchDir("constrained-modes");
   for (const char* name : {"compound-pendulum", "heavy-top", "spin-up-joint"}) {
@@ -211,5 +211,12 @@ TEST(Reliability, ModesOfConstrainedScenesAreRefusedTheSameWayOnBothPaths) {
     const std::string tail = r.output.substr(r.output.find(name) + std::string(name).size() + 5);
     EXPECT_NE(a.output.find("as-modes.yaml" + tail), std::string::npos) << a.output << "\n" << r.output;
   }
+  writeFile(dir / "free.yaml", "analysis: modes\ndimension: 2\nbodies:\n  - name: beam\n    element: AncfCable2d\n"
+                               "    elements: 16\n    geometry: {kind: line, start: [0, 0], end: [1, 0]}\n"
+                               "    section: {E: 2.1e11, A: 1e-4, I: 1e-8, rho: 7850}\nmodes: {count: 4}\n");
+  auto f = runCommand(run("run " + (dir / "free.yaml").string() + " -o " + (dir / "free.h5").string()));
+  EXPECT_EQ(f.exitCode, 0) << f.output;
+  EXPECT_NE(f.output.find("mode 3: 0 Hz  (rigid-body mode, residual"), std::string::npos) << f.output;
+  EXPECT_NE(f.output.find("mode 4: 184.17"), std::string::npos) << f.output;  // (4.73004)^2 sqrt(EI/(rho A))/2pi
   fs::remove_all(dir);
 }

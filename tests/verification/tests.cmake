@@ -11,3 +11,4 @@ strand_test(NAME verify_initial_state_and_loads SOURCES verification/test_initia
 strand_test(NAME verify_hub_beam_dynamics SOURCES verification/test_hub_beam_dynamics.cpp LABELS verification)
 strand_test(NAME verify_rigid_body_3d SOURCES verification/test_rigid_body_3d.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_distance_joint SOURCES verification/test_distance_joint.cpp LABELS verification NPROCS 1 2)
+strand_test(NAME verify_free_modes SOURCES verification/test_free_modes.cpp LABELS verification NPROCS 1 2)
