@@ -39,4 +39,8 @@ inline std::string fmt(const char* f, double a) {
 // The output file: -o FILE, else the scene's output.file, else <scene stem>.h5 in the working directory.
 std::string outputPath(const model::SceneDescription& scene);
 
+// Refuses (InputError) a scene whose estimated memory exceeds -max_memory SIZE or what the hosts
+// have, before anything is allocated (io/ResourceEstimate.hpp). Collective.
+void checkMemory(MPI_Comm comm, const model::SceneDescription& scene, bool modal);
+
 }  // namespace strand::drivers

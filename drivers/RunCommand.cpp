@@ -20,6 +20,7 @@
 #include "strand/io/Checkpoint.hpp"
 #include "strand/io/Frames.hpp"
 #include "strand/io/OutputWriter.hpp"
+#include "strand/io/ResourceEstimate.hpp"
 #include "strand/io/SceneReader.hpp"
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/ModalSolver.hpp"
@@ -47,6 +48,15 @@ std::string outputPath(const model::SceneDescription& scene) {
     const std::filesystem::path candidate = p.parent_path() / (p.stem().string() + suffix + p.extension().string());
     if (!std::filesystem::exists(candidate)) return candidate.string();
   }
+}
+
+void checkMemory(MPI_Comm comm, const model::SceneDescription& scene, bool modal) {
+  char buf[64] = "";
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsGetString(nullptr, nullptr, "-max_memory", buf, sizeof(buf), &set);
+  const double limit = set ? io::parseBytes(buf) : 0.0;
+  if (set && limit <= 0.0) throw InputError(std::string("-max_memory ") + buf + ": not a size (e.g. 64G, 512M)");
+  io::checkResources(comm, scene, modal, limit);
 }
 
 namespace {
@@ -377,6 +387,7 @@ int runScene(const char* scenePath, RunMode mode) {
   return guarded(comm, [&] {
     const model::SceneDescription scene = io::readScene(scenePath);
     if (scene.hubBeam.present) {
+      checkMemory(comm, scene, false);
       if (mode == RunMode::ForceModes)
         throw InputError(scene.hubBeam.mark.where() + ": 'strand modes' needs a body scene; a hub_beam scene runs "
                          "its dynamics with 'strand run'");
@@ -388,6 +399,7 @@ int runScene(const char* scenePath, RunMode mode) {
       return runHubBeam(comm, scene, out);
     }
     if (mode == RunMode::ForceModes) io::requireModalScene(scene);
+    checkMemory(comm, scene, mode == RunMode::ForceModes || scene.analysis == model::Analysis::Modes);
     SceneRun run(comm, scene, mode);
     return run.execute();
   });

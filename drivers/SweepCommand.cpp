@@ -39,6 +39,7 @@ int runSweepScene(const char* scenePath) {
     if (!scene.sweep.present)
       throw InputError(scene.sweep.mark.where() + ": no 'sweep' section: `strand sweep` needs sweep: {parameter, from, "
                        "to, points} (docs/scene-reference.md#sweep); use `strand modes` for one point");
+    checkMemory(comm, scene, true);
     const std::string out = outputPath(scene);
     RunFiles files = sceneFiles(scene);
     files.results.push_back({"the output", out});

@@ -220,3 +220,43 @@ TEST(Reliability, ModesOfConstrainedScenesAreRefusedTheSameWayOnBothPaths) {
   EXPECT_NE(f.output.find("mode 4: 184.17"), std::string::npos) << f.output;  // (4.73004)^2 sqrt(EI/(rho A))/2pi
   fs::remove_all(dir);
 }
+
+// Item 9: sizes that do not fit are refused before anything is allocated, with exit code 2 and the
+// estimate: 2147483647 elements, a 20,000,000-element hub_beam, 10^8 samples per element, a
+// polyline file that never ends. (Before: GBs used, then bad_alloc or a hang; an int overflow in the
+// hub-beam; 13.8 GB read from /dev/zero in 60 s.) Each command runs under `timeout 60` with 4 GB of
+// address space, so the old behaviour fails the test instead of the machine.
+TEST(Reliability, OversizedScenesAreRefusedBeforeAnythingIsAllocated) {
+  const fs::path dir = scratchDir("oversized");
+  std::string huge = kPendulum, samples = kPendulum, endless = kPendulum;
+  huge.replace(huge.find("elements: 8"), 11, "elements: 2147483647");
+  samples += "output: {samples_per_element: 100000000}\n";
+  endless.replace(endless.find("{kind: line, start: [0, 0], end: [1, 0]}"), 40, "{kind: polyline, file: /dev/zero}");
+  writeFile(dir / "huge.yaml", huge);
+  writeFile(dir / "samples.yaml", samples);
+  writeFile(dir / "endless.yaml", endless);
+  writeFile(dir / "hub.yaml", "analysis: dynamic\nhub_beam:\n  beam: {length: 10, E: 70e9, A: 4e-4, I: 2e-7, rho: 3000}\n"
+                              "  hub: {angle: {function: spin_up, omega: 4, duration: 15}}\n"
+                              "  discretization: {method: fem, elements: 20000000}\ndynamics: {dt: 1e-3, t_end: 1}\n");
+  const std::pair<const char*, const char*> cases[] = {
+      {"huge", "huge.yaml:4: bodies[0].elements: the scene has up to 25769803776 coordinates"},
+      {"samples", "samples.yaml:4: bodies[0].elements: 8 elements x output.samples_per_element 100000000"},
+      {"endless", "endless.yaml:7: bodies[0].geometry.file: '/dev/zero' is not a regular file"},
+      {"hub", "hub.yaml:2: hub_beam.discretization: this run needs about"},
+  };
+  for (const auto& [name, message] : cases) {
+    auto r = runCommand("ulimit -v 4000000; timeout 60 " + run("run " + (dir / (std::string(name) + ".yaml")).string() +
+                                                               " -o " + (dir / "x.h5").string()));
+    EXPECT_EQ(r.exitCode, 2) << name << ": " << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << name << ": " << r.output;
+  }
+  // the limit can be set; a bad size is bad input
+  auto r = runCommand(run("run " + (dir / "huge.yaml").string() + " -max_memory lots -o " + (dir / "x.h5").string()));
+  EXPECT_NE(r.output.find("-max_memory lots: not a size (e.g. 64G, 512M)"), std::string::npos) << r.output;
+  writeFile(dir / "p.yaml", kPendulum);
+  r = runCommand(run("run " + (dir / "p.yaml").string() + " -max_memory 1M -o " + (dir / "x.h5").string()));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("more than the 1.05 MB of -max_memory"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "x.h5"));
+  fs::remove_all(dir);
+}

@@ -5,6 +5,7 @@ strand_test(NAME unit_output_writer SOURCES unit/test_output_writer.cpp LABELS u
 strand_test(NAME unit_checkpoint SOURCES unit/test_checkpoint.cpp LABELS unit NPROCS 1 2)
 strand_test(NAME unit_scene_reader SOURCES unit/test_scene_reader.cpp LABELS unit)
 strand_test(NAME unit_scene_reader_input SOURCES unit/test_scene_reader_input.cpp LABELS unit)
+strand_test(NAME unit_resource_estimate SOURCES unit/test_resource_estimate.cpp LABELS unit NPROCS 1 2)
 target_compile_definitions(unit_scene_reader PRIVATE STRAND_DOCS_DIR="${PROJECT_SOURCE_DIR}/docs")
 strand_test(NAME unit_time_function SOURCES unit/test_time_function.cpp LABELS unit)
 strand_test(NAME unit_constraint SOURCES unit/test_constraint.cpp LABELS unit)
