@@ -12,6 +12,7 @@
 
 #include "Commands.hpp"
 #include "Progress.hpp"
+#include "SolveGuard.hpp"
 #include "strand/core/Error.hpp"
 #include "strand/ffr/HubBeamDynamics.hpp"
 #include "strand/ffr/RadialPointInterpolation.hpp"
@@ -76,7 +77,7 @@ int runHubBeam(MPI_Comm comm, const model::SceneDescription& scene, const std::s
   }
   const model::DynamicsDesc& dyn = scene.dynamics;
   ffr::HubBeamDynamics solver(*hb, dyn);
-  PetscCallAbort(comm, solver.setFromOptions());
+  applyOptions(comm, [&] { return solver.setFromOptions(); });
 
   io::RunInfo info{scene.file, "dynamic", kVersion, 2};
   io::BodyLayout layout{"beam", "HubBeam", 1, 1, hb->deformationSize(), kSamples};
@@ -125,7 +126,10 @@ int runHubBeam(MPI_Comm comm, const model::SceneDescription& scene, const std::s
   std::string failure;
   PetscLogDouble t0, t1;
   PetscTime(&t0);
-  PetscCallAbort(comm, solver.run(onStep, &failure));
+  const std::string error = guardSolve(comm, [&] { return solver.run(onStep, &failure); });
+  if (!error.empty())
+    failure = "the hub-beam integration failed after t = " + fmt("%.6g", last.time) + " s, step " +
+              std::to_string(last.step) + ": " + error + ". Try a smaller dynamics.dt, or check the scene's values";
   PetscTime(&t1);
   progress.finish();
   const int code = failure.empty() ? kExitSuccess : kExitDiverged;

@@ -15,6 +15,7 @@
 #include "Checkpointing.hpp"
 #include "Commands.hpp"
 #include "FileSafety.hpp"
+#include "SolveGuard.hpp"
 #include "Progress.hpp"
 #include "strand/core/Error.hpp"
 #include "strand/io/Checkpoint.hpp"
@@ -48,6 +49,11 @@ std::string outputPath(const model::SceneDescription& scene) {
     const std::filesystem::path candidate = p.parent_path() / (p.stem().string() + suffix + p.extension().string());
     if (!std::filesystem::exists(candidate)) return candidate.string();
   }
+}
+
+void applyOptions(MPI_Comm comm, const std::function<PetscErrorCode()>& setFromOptions) {
+  const std::string error = guardSolve(comm, setFromOptions);
+  if (!error.empty()) throw InputError("PETSc options: " + error);
 }
 
 void checkMemory(MPI_Comm comm, const model::SceneDescription& scene, bool modal) {
@@ -103,9 +109,14 @@ public:
       files.restart = _checkpoint.restart;
     }
     checkRunFiles(files, overwriteRequested());
+    std::unique_ptr<solvers::StaticSolver> statics;  // its PETSc options are input too
+    if (!dynamic && (!modal || hasLoads(_scene))) {
+      statics = std::make_unique<solvers::StaticSolver>(_problem.assembler(), _scene.statics.loadSteps);
+      applyOptions(_comm, [&] { return statics->setFromOptions(); });
+    }
     if (dynamic) {
       dyn = std::make_unique<solvers::Dynamics>(_problem.assembler(), _scene.dynamics);
-      PetscCallAbort(_comm, dyn->setFromOptions());
+      applyOptions(_comm, [&] { return dyn->setFromOptions(); });
       if (!_checkpoint.restart.empty()) {
         _restart = readRestart(_comm, _scene, _problem.model(), _checkpoint.restart);
         checkRestartIntegrator(_restart, _checkpoint.restart, *dyn);
@@ -126,9 +137,9 @@ public:
       code = dynamicSolve(*dyn, X, &failure);  // writes the initial frame itself
     } else {
       writeFrame(X, 0.0);
-      if (!modal || hasLoads(_scene)) code = staticSolve(X, &failure);
+      if (statics) code = staticSolve(*statics, X, &failure);
     }
-    if (code == kExitSuccess && modal) modes(X);
+    if (code == kExitSuccess && modal) code = modes(X, &failure);
     PetscTime(&t1);
     _progress.finish();
     _writer->setAttribute("status", code == kExitSuccess ? "ok" : code == kExitWallTime ? "stopped" : "diverged");
@@ -166,12 +177,14 @@ private:
     _writer->writeFrame(time, frames);
   }
 
-  int staticSolve(Vec X, std::string* failure) {
-    solvers::StaticSolver solver(_problem.assembler(), _scene.statics.loadSteps);
-    PetscCallAbort(_comm, solver.setFromOptions());
+  int staticSolve(solvers::StaticSolver& solver, Vec X, std::string* failure) {
+    int lastStep = 0;
+    double lastFactor = 0.0;
     auto onStep = [&](const solvers::StaticStep& s, Vec Xs) -> PetscErrorCode {
       PetscFunctionBeginUser;
       _newtonTotal += s.newtonIterations;
+      lastStep = s.step;
+      lastFactor = s.loadFactor;
       _progress.update("load step " + std::to_string(s.step) + "  load factor " + fmt("%.4f", s.loadFactor) +
                        "  Newton " + std::to_string(s.newtonIterations) + "  |R| " + fmt("%.2e", s.residualNorm));
       PetscCallCXX(writeFrame(Xs, s.loadFactor));
@@ -180,7 +193,11 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("residual_norm", s.residualNorm));
       PetscFunctionReturn(0);
     };
-    PetscCallAbort(_comm, solver.solve(X, onStep, failure));
+    const std::string error = guardSolve(_comm, [&] { return solver.solve(X, onStep, failure); });
+    if (!error.empty())
+      *failure = "the static solve failed in load step " + std::to_string(lastStep + 1) + " (from load factor " +
+                 fmt("%.4g", lastFactor) + "): " + error + ". Check the supports (a free body or a mechanism has no "
+                 "static stiffness) and the scene's values";
     return failure->empty() ? kExitSuccess : kExitDiverged;
   }
 
@@ -215,9 +232,11 @@ private:
     const auto& rigid = _problem.model().rigidBodies();
     const int dim = _problem.model().dim();
     const std::vector<double>& q0 = _problem.model().initialCoordinates();
+    solvers::DynamicsStep reached;
     auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec Vs) -> PetscErrorCode {
       PetscFunctionBeginUser;
       _newtonTotal += s.newtonIterations;
+      reached = s;
       const bool last = s.time >= d.tEnd * (1.0 - 1e-12);
       // frames every output_every steps, or at the first step at or after each multiple of dt_out
       const double slack = 1e-9 * d.dt;
@@ -276,7 +295,13 @@ private:
                        s.time / d.tEnd);
       PetscFunctionReturn(0);
     };
-    PetscCallAbort(_comm, dyn.run(X, V, onStep, failure));
+    const std::string error = guardSolve(_comm, [&] { return dyn.run(X, V, onStep, failure); });
+    if (!error.empty()) {
+      *failure = std::string(dyn.schemeName()) + " failed after t = " + fmt("%.6g", reached.time) + " s, step " +
+                 std::to_string(reached.step) + ": " + error + ". Try a smaller dynamics.dt, or check the scene's values";
+      VecDestroy(&V);
+      return kExitDiverged;
+    }
     const std::string newtonStart = dyn.newtonStart();  // the first step's check or a Newton failure may change it
     if (!newtonStart.empty()) {
       _writer->setAttribute("newton_start", newtonStart);
@@ -299,11 +324,20 @@ private:
     return code;
   }
 
-  void modes(Vec X) {
+  int modes(Vec X, std::string* failure) {
     solvers::ModalResult r;
     {
       solvers::ModalSolver solver(_problem.assembler(), solvers::modalOptions(_scene.modes));
-      PetscCallAbort(_comm, solver.solve(X, &r));
+      const std::string error = guardSolve(_comm, [&] { return solver.solve(X, &r); });
+      for (size_t k = 0; k < r.omega.size() && error.empty(); ++k)
+        if (!std::isfinite(r.omega[k]) || !std::isfinite(r.relativeResidual[k]))
+          *failure = "the modal solve gave a non-finite frequency (mode " + std::to_string(k + 1) + ")";
+      if (!error.empty()) *failure = "the modal solve failed: " + error;
+      if (!failure->empty()) {
+        *failure += ". Check the supports and the section values";
+        solvers::destroyModes(&r);
+        return kExitDiverged;
+      }
     }
     const double T = _problem.model().scales().time();
     std::vector<double> hz;
@@ -331,6 +365,7 @@ private:
     _writer->writeModes(hz, shapes);
     VecDestroy(&Y);
     solvers::destroyModes(&r);
+    return kExitSuccess;
   }
 
   void summary(Vec X) {

@@ -2,12 +2,14 @@
 // mass location), tracked by MAC, with veering and crossing detected; writes HDF5 + CSV.
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
 #include "Commands.hpp"
 #include "FileSafety.hpp"
 #include "Progress.hpp"
+#include "SolveGuard.hpp"
 #include "strand/core/Error.hpp"
 #include "strand/io/SceneReader.hpp"
 #include "strand/io/SweepWriter.hpp"
@@ -23,6 +25,24 @@ std::string pointLine(int i, int points, const solvers::SweepResult& r) {
   for (size_t k = 0; k < w.size() && k < 8; ++k) s += " " + fmt("%.6g", w[k]);
   if (w.size() > 8) s += " ...";
   return s;
+}
+
+// After a failure inside a point: the points that are complete in every table, nothing of the
+// interrupted one (tracking and events are computed after the sweep, so there are none).
+void keepCompletePoints(solvers::SweepResult& r) {
+  size_t p = std::min({r.parameter.size(), r.gamma.size(), r.omega.size(), r.omegaBar.size(), r.residual.size()});
+  if (!r.nodes.empty()) p = std::min(p, r.nodes.size());
+  if (!r.shapes.empty()) p = std::min(p, r.shapes.size());
+  r.parameter.resize(p);
+  r.gamma.resize(p);
+  r.omega.resize(p);
+  r.omegaBar.resize(p);
+  r.residual.resize(p);
+  if (r.nodes.size() > p) r.nodes.resize(p);
+  if (r.shapes.size() > p) r.shapes.resize(p);
+  r.macNext.resize(std::min(r.macNext.size(), p > 0 ? p - 1 : 0));
+  r.label.clear();
+  r.events.clear();
 }
 
 }  // namespace
@@ -51,9 +71,15 @@ int runSweepScene(const char* scenePath) {
         " points, " + std::to_string(scene.modes.count) + " modes, " + std::to_string(size) + " rank(s)");
     Progress progress(comm);
     solvers::SweepResult r;
-    PetscCallAbort(comm, solvers::runSweep(comm, scene, &r, [&](int i, const solvers::SweepResult& res) {
-                     progress.update(pointLine(i, scene.sweep.points, res));
-                   }));
+    const std::string error = guardSolve(comm, [&] {
+      return solvers::runSweep(comm, scene, &r, [&](int i, const solvers::SweepResult& res) {
+        progress.update(pointLine(i, scene.sweep.points, res));
+      });
+    });
+    if (!error.empty()) {
+      keepCompletePoints(r);
+      r.failure = "the sweep failed after " + std::to_string(r.parameter.size()) + " point(s): " + error;
+    }
     progress.finish();
     io::writeSweep(comm, out, io::SweepInfo{scene.file, kVersion, scene.dimension}, r);
     for (const auto& e : r.events)

@@ -788,6 +788,7 @@ public:
     if (const Field f = root.child("output"); f.present()) readOutput(f);
     checkCatenaryDefaults();
     checkOutputNames();
+    checkRepresentable();
     if (!scene_.sweep.present) scene_.sweep.mark = {ctx_.file, root.line(), "sweep"};  // `strand sweep` names it
     return scene_;
   }
@@ -827,6 +828,7 @@ private:
     for (const HubBeamKey& k : kHubBeamBeamKeys) beamKeys.emplace_back(k.name);
     beam.expectMap(beamKeys);
     for (const HubBeamKey& k : kHubBeamBeamKeys) h.*k.field = requirePositive(beam.child(k.name));
+    checkSection(beam.mark(), h.E, h.A, h.I, h.rho, h.length);
 
     readHubBeamHub(f.child("hub"), h);
     if (const Field c = f.child("coupling"); c.present()) h.coupling = pick(c, "coupling", kHubBeamCouplings).value;
@@ -950,6 +952,11 @@ private:
     d.dt = requirePositive(f.child("dt"));
     d.tEnd = requirePositive(f.child("t_end"));
     if (d.dt > d.tEnd) f.child("dt").fail("larger than t_end");
+    // a fixed-step run counts its steps in a 32-bit PETSc integer (issue 32 item 8: 3e9 steps
+    // ended in a PETSc abort, exit 63)
+    if (!d.adaptive && std::ceil(d.tEnd / d.dt) + 2.0 > double(INT_MAX))
+      f.child("dt").fail("t_end / dt = " + fmt(d.tEnd / d.dt, 3) + " steps, more than a run can count (" +
+                         std::to_string(INT_MAX - 2) + "); use a larger dt");
     if (const Field k = f.child("output_every"); k.present()) d.outputEvery = requireIntAtLeast(k, 1);
     if (const Field o = f.child("dt_out"); o.present()) {
       if (f.child("output_every").present()) o.fail("give either 'output_every' (steps) or 'dt_out' (seconds), not both");
@@ -1331,6 +1338,39 @@ private:
     }
     if (const Field samples = f.child("samples_per_element"); samples.present())
       scene_.output.samplesPerElement = requireIntAtLeast(samples, 1);
+  }
+
+  // Values that are valid one by one but whose products leave double precision: the stiffness and
+  // mass of a section, the time scale rho A L^4 / (E I). E 1e308 or A 1e-300 ended in PETSc aborts
+  // (zero pivots, NaN tolerances; issue 32 item 8). Each must lie within [1e-100, 1e100], far
+  // outside any physical scene and far inside double precision, so that their squares stay finite.
+  static bool representable(double v) { return std::isfinite(v) && std::fabs(v) >= 1e-100 && std::fabs(v) <= 1e100; }
+
+  static void checkSection(const SourceMark& at, double E, double A, double I, double rho, double length) {
+    const std::pair<const char*, double> products[] = {{"E A", E * A},
+                                                       {"E I", E * I},
+                                                       {"rho A", rho * A},
+                                                       {"the length", length},
+                                                       {"rho A L^4 / (E I)", rho * A * std::pow(length, 4) / (E * I)}};
+    for (const auto& [name, v] : products)
+      if (!representable(v))
+        failAt(at, name + std::string(" = ") + fmt(v) + " is beyond what the solvers can represent (1e-100..1e100); "
+                                                        "check the units");
+  }
+
+  void checkRepresentable() const {
+    for (const BodyDesc& b : scene_.bodies) {
+      checkSection({b.mark.file, b.mark.line, b.mark.key + ".section"}, b.E, b.A, b.I, b.rho, bodyLength(b.geometry));
+      for (const model::PointMassDesc& pm : b.pointMasses)
+        if (!representable(pm.mass)) failAt(pm.mark, "a mass of " + fmt(pm.mass) + " kg is beyond 1e-100..1e100");
+    }
+    for (const model::RigidBodyDesc& r : scene_.rigidBodies) {
+      const double values[] = {r.mass, ctx_.dim == 2 ? r.inertia : r.principalInertia[0], r.principalInertia[1],
+                               r.principalInertia[2]};
+      for (int k = 0; k < (ctx_.dim == 2 ? 2 : 4); ++k)
+        if (!representable(values[k]))
+          failAt(r.mark, "mass " + fmt(r.mass) + " and inertia must lie within 1e-100..1e100 (got " + fmt(values[k]) + ")");
+    }
   }
 
   // Body and rigid-body names become HDF5 group and series names and XDMF text: no '/' or ':'
