@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "Commands.hpp"
+#include "Terminal.hpp"
 #include "strand/core/Error.hpp"
 
 namespace {
@@ -153,6 +154,7 @@ int main(int argc, char** argv) {
       return strand::kExitBadInput;
     }
     if (SlepcInitialize(&argc, &argv, nullptr, nullptr)) return strand::kExitInternal;
+    strand::drivers::lineBufferBatchOutput();
     const int code = strand::drivers::runWorkPrecision(argv[3]);
     SlepcFinalize();
     return code;
@@ -160,6 +162,7 @@ int main(int argc, char** argv) {
   const char* scene = argv[2];
   // PETSc sees every argument; positional ones are ignored by its options parser.
   if (SlepcInitialize(&argc, &argv, nullptr, nullptr)) return strand::kExitInternal;
+  strand::drivers::lineBufferBatchOutput();
   const int code = cmd == "sweep" ? strand::drivers::runSweepScene(scene)
                    : strand::drivers::runScene(scene, cmd == "modes" ? strand::drivers::RunMode::ForceModes
                                                                      : strand::drivers::RunMode::SceneAnalysis);

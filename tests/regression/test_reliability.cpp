@@ -323,3 +323,50 @@ TEST(Reliability, ExtremeValuesAreBadInputAndASolverErrorIsAFailedSolve) {
   }
   fs::remove_all(dir);
 }
+
+namespace {
+
+// A pendulum run far longer than any test waits for (200 s of simulated time, 2e5 steps).
+std::string longPendulum() {
+  std::string text = kPendulum;
+  text.replace(text.find("t_end: 0.05"), 11, "t_end: 200");
+  return text;
+}
+
+// Shell: in `dir`, start `command` in the background (its log in LOG), wait until the log shows a
+// progress line (the run is integrating), then `signal` the processes, wait (at most 60 s, then
+// SIGKILL) and print "rc=N".
+std::string signalScript(const fs::path& dir, const std::string& command, const std::string& log,
+                         const std::string& signal) {
+  return "cd " + dir.string() + "; " + command + " > " + log + " 2>&1 & P=$!; for i in $(seq 300); do grep -q "
+         "'^t \\|^load step ' " + log + " && break; sleep 0.1; done; " + signal +
+         "; for i in $(seq 600); do kill -0 $P 2>/dev/null || break; sleep 0.1; done; kill -KILL $P 2>/dev/null; "
+         "wait $P; echo rc=$?";
+}
+
+}  // namespace
+
+// Item 13: in a batch job (rank 0's output a file, also under mpirun, where the rank's own stdout
+// is a pseudo-terminal) progress is plain lines, never the terminal's redrawn line, and every line
+// is flushed: a killed run's log keeps what it printed. (Before: under mpirun the log got "\r\033[K"
+// at every step; a run killed after a second left an empty log.)
+TEST(Reliability, BatchProgressIsPlainFlushedLinesAlsoUnderMpirun) {
+  const fs::path dir = scratchDir("progress");
+  std::string shortRun = kPendulum;
+  shortRun.replace(shortRun.find("t_end: 0.05"), 11, "t_end: 0.3");
+  writeFile(dir / "short.yaml", shortRun);
+  writeFile(dir / "long.yaml", longPendulum());
+  const std::string mpi = "env -i PATH=\"$PATH\" HOME=\"$HOME\" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                          "OMPI_MCA_btl_vader_single_copy_mechanism=none " + std::string(STRAND_MPIEXEC) + " -n 2 ";
+  auto r = runCommand("cd " + dir.string() + " && " + mpi + run("run short.yaml -o s.h5") + " > s.log 2>&1");
+  EXPECT_EQ(r.exitCode, 0) << readText(dir / "s.log");
+  const std::string log = readText(dir / "s.log");
+  EXPECT_EQ(log.find('\r'), std::string::npos) << log.substr(0, 500);
+  EXPECT_EQ(log.find("\033[K"), std::string::npos);
+  EXPECT_NE(log.find("\nt 0.3 s  step 300"), std::string::npos) << log;
+  r = runCommand(signalScript(dir, run("run long.yaml -o k.h5"), "k.log", "kill -KILL $P"));
+  const std::string killed = readText(dir / "k.log");
+  EXPECT_NE(killed.find("strand 0.1.0: long.yaml: 8 elements"), std::string::npos) << killed;
+  EXPECT_NE(killed.find("\nt 0 s  step 0"), std::string::npos) << killed;
+  fs::remove_all(dir);
+}
