@@ -15,6 +15,7 @@
 #include "Checkpointing.hpp"
 #include "Commands.hpp"
 #include "FileSafety.hpp"
+#include "Signals.hpp"
 #include "SolveGuard.hpp"
 #include "Progress.hpp"
 #include "strand/core/Error.hpp"
@@ -178,6 +179,7 @@ private:
   }
 
   int staticSolve(solvers::StaticSolver& solver, Vec X, std::string* failure) {
+    solver.setStopCheck([] { return stopSignal() != 0; });
     int lastStep = 0;
     double lastFactor = 0.0;
     auto onStep = [&](const solvers::StaticStep& s, Vec Xs) -> PetscErrorCode {
@@ -198,6 +200,11 @@ private:
       *failure = "the static solve failed in load step " + std::to_string(lastStep + 1) + " (from load factor " +
                  fmt("%.4g", lastFactor) + "): " + error + ". Check the supports (a free body or a mechanism has no "
                  "static stiffness) and the scene's values";
+    if (failure->empty() && solver.stoppedByRequest()) {
+      *failure = "stopped by " + std::string(signalName(stopSignal())) + " after load step " + std::to_string(lastStep) +
+                 " (load factor " + fmt("%.4g", lastFactor) + "); a static run has no checkpoint: run it again to finish";
+      return kExitStopped;
+    }
     return failure->empty() ? kExitSuccess : kExitDiverged;
   }
 
@@ -217,12 +224,15 @@ private:
     _writer->setAttribute("integrator", dyn.schemeName());
     PetscLogDouble start;
     PetscTime(&start);
-    if (_checkpoint.wallTime > 0.0)
-      dyn.setStopCheck([&] {
+    bool wallTimeReached = false;
+    dyn.setStopCheck([&] {  // the wall-time limit or a batch job's stop signal (Signals.hpp)
+      if (_checkpoint.wallTime > 0.0 && !wallTimeReached) {
         PetscLogDouble now;
         PetscTime(&now);
-        return now - start > _checkpoint.wallTime;
-      });
+        wallTimeReached = now - start > _checkpoint.wallTime;
+      }
+      return wallTimeReached || stopSignal() != 0;
+    });
     _writer->setAttribute("dt", d.dt);
     const bool moving = _problem.model().hasPrescribedMotion();
     const bool joints = _problem.model().hasConstraints();
@@ -313,7 +323,9 @@ private:
       writeDynamicsCheckpoint(_comm, _scene, _problem, dyn, X, V, _checkpoint.path);
       solvers::ResumeState at;
       PetscCallAbort(_comm, dyn.saveState(&at));
-      *failure = "stopped at the wall-time limit (-wall_time " + fmt("%g", _checkpoint.wallTime) + " s) at t = " +
+      const std::string why = wallTimeReached ? "at the wall-time limit (-wall_time " + fmt("%g", _checkpoint.wallTime) + " s)"
+                                              : "by " + std::string(signalName(stopSignal() ? stopSignal() : 0));
+      *failure = "stopped " + why + " at t = " +
                  fmt("%.6g", at.time) + " s, step " + std::to_string(at.step) + "; checkpoint: " + _checkpoint.path +
                  ". Continue with: strand run " + _scene.file + " -restart " + _checkpoint.path +
                  (dyn.exactRestart() ? "" : " (this integrator restarts its multistep start-up: the continued "

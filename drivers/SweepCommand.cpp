@@ -9,6 +9,7 @@
 #include "Commands.hpp"
 #include "FileSafety.hpp"
 #include "Progress.hpp"
+#include "Signals.hpp"
 #include "SolveGuard.hpp"
 #include "strand/core/Error.hpp"
 #include "strand/io/SceneReader.hpp"
@@ -72,9 +73,9 @@ int runSweepScene(const char* scenePath) {
     Progress progress(comm);
     solvers::SweepResult r;
     const std::string error = guardSolve(comm, [&] {
-      return solvers::runSweep(comm, scene, &r, [&](int i, const solvers::SweepResult& res) {
-        progress.update(pointLine(i, scene.sweep.points, res));
-      });
+      return solvers::runSweep(
+          comm, scene, &r, [&](int i, const solvers::SweepResult& res) { progress.update(pointLine(i, scene.sweep.points, res)); },
+          [] { return stopSignal() != 0; });
     });
     if (!error.empty()) {
       keepCompletePoints(r);
@@ -92,6 +93,11 @@ int runSweepScene(const char* scenePath) {
       if (rank == 0) std::fprintf(stderr, "strand: error: %s\n", r.failure.c_str());
       say("output so far: " + out + " (readable, status = failed)");
       return kExitDiverged;
+    }
+    if (r.stopped) {
+      say("stopped by " + std::string(signalName(stopSignal())) + " after " + std::to_string(r.parameter.size()) +
+          " of " + std::to_string(scene.sweep.points) + " points; output so far: " + out + " (status = stopped)");
+      return kExitStopped;
     }
     say("method " + r.method + ", wall time " + fmt("%.3f s", r.seconds) + " (" +
         fmt("%.4f s", r.seconds / std::max<size_t>(1, r.parameter.size())) + " per point); output: " + out + " (+ " +

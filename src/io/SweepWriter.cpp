@@ -44,7 +44,7 @@ void writeHdf5(const std::string& path, const SweepInfo& info, const solvers::Sw
   writeAttribute(f, "analysis", std::string("sweep"));
   writeAttribute(f, "parameter", r.parameterName);
   writeAttribute(f, "method", r.method);
-  writeAttribute(f, "status", std::string(r.failure.empty() ? "ok" : "failed"));
+  writeAttribute(f, "status", std::string(!r.failure.empty() ? "failed" : r.stopped ? "stopped" : "ok"));
   writeAttribute(f, "failure", r.failure);
   writeAttribute(f, "wall_time_s", r.seconds);
   writeAttribute(f, "points", static_cast<int>(P));
