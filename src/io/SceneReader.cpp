@@ -5,6 +5,7 @@
 // each check can throw "<file>:<line>: <key>: <reason>" without passing places around by hand.
 #include "strand/io/SceneReader.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -742,8 +743,9 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
 
 class SceneParser {
 public:
-  explicit SceneParser(const std::string& file) : ctx_{file, fs::path(file).parent_path(), 3, &scene_.inputFiles} {
+  explicit SceneParser(const std::string& file) : ctx_{file, fs::path(file).parent_path(), 3} {
     scene_.file = file;
+    ctx_.inputs = &scene_.inputFiles;
   }
 
   model::SceneDescription parse(const YAML::Node& rootNode) {
@@ -1407,6 +1409,45 @@ private:
 
 }  // namespace
 
+namespace {
+
+// The events of one YAML document: the line of its first value (0: the document is empty).
+class FirstValue : public YAML::EventHandler {
+public:
+  int line = 0;
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { note(m); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { note(m); }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    note(m);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    note(m);
+  }
+  void OnMapEnd() override {}
+
+private:
+  void note(const YAML::Mark& m) {
+    if (line == 0) line = m.line + 1;
+  }
+};
+
+// The line where a second YAML document of `text` has a value, 0 if it has none. Walked with a
+// Parser, two documents at most: yaml-cpp 0.7's LoadAll never ends on some malformed input (it
+// keeps producing empty documents; found by tests/fuzz).
+int secondDocumentLine(const std::string& text) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  FirstValue first, second;
+  if (!parser.HandleNextDocument(first) || !parser.HandleNextDocument(second)) return 0;
+  return second.line;
+}
+
+}  // namespace
+
 void requireModalScene(const model::SceneDescription& scene) {
   // Modes of a constrained system need its static equilibrium first, and the static Newton of a
   // mechanism starts singular (no stiffness for the rigid motion while the multipliers are 0):
@@ -1418,13 +1459,10 @@ model::SceneDescription parseScene(const std::string& yamlText, const std::strin
   const std::string& file = fileNameForMessages;
   YAML::Node root;
   try {
-    // every document, so that a second one is refused rather than ignored (issue 32 item 10)
-    const std::vector<YAML::Node> documents = YAML::LoadAll(yamlText);
-    for (size_t k = 1; k < documents.size(); ++k)
-      if (documents[k].IsDefined() && !documents[k].IsNull())
-        throw InputError(file + ":" + std::to_string(lineOf(documents[k], 1)) +
-                         ": (document): a second YAML document ('---') is not read; a scene is one document");
-    if (!documents.empty()) root = documents.front();
+    root = YAML::Load(yamlText);
+    if (const int line = secondDocumentLine(yamlText))  // refused rather than ignored (issue 32 item 10)
+      throw InputError(file + ":" + std::to_string(line) +
+                       ": (document): a second YAML document ('---') is not read; a scene is one document");
   } catch (const YAML::Exception& e) {
     throw InputError(file + ":" + std::to_string(e.mark.line + 1) + ": (syntax): " + e.msg);
   }

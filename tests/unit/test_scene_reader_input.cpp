@@ -70,6 +70,10 @@ TEST(SceneReaderInput, ASecondDocumentIsRefused) {
   const std::string why = refusal(kScene + "---\nanalysis: modes\n");
   EXPECT_EQ(why, "scene.yaml:12: (document): a second YAML document ('---') is not read; a scene is one document");
   EXPECT_EQ(refusal("---\n" + kScene + "...\n"), "");  // one document with its markers is fine
+  // found by tests/fuzz: yaml-cpp's LoadAll never returned on a stray ',' (an endless stream of
+  // empty documents); the reader reads at most two documents
+  EXPECT_NE(refusal(",\n"), "");
+  EXPECT_NE(refusal(", a:\n  b: 1\n"), "");
 }
 
 TEST(SceneReaderInput, TextIsUtf8WithoutControlCharactersAndNamesFitTheOutput) {
