@@ -15,9 +15,9 @@
 #include "Checkpointing.hpp"
 #include "Commands.hpp"
 #include "FileSafety.hpp"
+#include "Progress.hpp"
 #include "Signals.hpp"
 #include "SolveGuard.hpp"
-#include "Progress.hpp"
 #include "strand/core/Error.hpp"
 #include "strand/io/Checkpoint.hpp"
 #include "strand/io/Frames.hpp"
@@ -324,7 +324,7 @@ private:
       solvers::ResumeState at;
       PetscCallAbort(_comm, dyn.saveState(&at));
       const std::string why = wallTimeReached ? "at the wall-time limit (-wall_time " + fmt("%g", _checkpoint.wallTime) + " s)"
-                                              : "by " + std::string(signalName(stopSignal() ? stopSignal() : 0));
+                                              : "by " + std::string(signalName(stopSignal()));
       *failure = "stopped " + why + " at t = " +
                  fmt("%.6g", at.time) + " s, step " + std::to_string(at.step) + "; checkpoint: " + _checkpoint.path +
                  ". Continue with: strand run " + _scene.file + " -restart " + _checkpoint.path +
