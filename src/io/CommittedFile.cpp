@@ -205,8 +205,18 @@ void publish(Driver& f) {
   bool exchanged = false;
   if (renameat2(AT_FDCWD, f.work.c_str(), AT_FDCWD, f.path.c_str(), RENAME_EXCHANGE) == 0) {
     exchanged = true;
-  } else if (errno == ENOENT || errno == EINVAL || errno == ENOSYS) {
-    // no result yet, or no exchange on this file system: a plain rename is atomic too
+  } else if (errno == EINVAL || errno == ENOSYS || errno == EOPNOTSUPP) {
+    // no exchange on this file system (NFS): the same with a hard link to the result, so that it can
+    // become the next work file; without hard links, a plain rename (and a full copy below)
+    const std::string held = f.work + ".previous";
+    ::unlink(held.c_str());
+    const bool linked = ::link(f.path.c_str(), held.c_str()) == 0;
+    if (std::rename(f.work.c_str(), f.path.c_str()) != 0) {
+      if (linked) ::unlink(held.c_str());
+      throw std::runtime_error(reason("cannot rename the work file"));
+    }
+    exchanged = linked && std::rename(held.c_str(), f.work.c_str()) == 0;
+  } else if (errno == ENOENT) {  // no result yet: a plain rename is atomic too
     if (std::rename(f.work.c_str(), f.path.c_str()) != 0) throw std::runtime_error(reason("cannot rename the work file"));
   } else {
     throw std::runtime_error(reason("cannot exchange the work file with the result"));
