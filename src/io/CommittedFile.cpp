@@ -221,6 +221,7 @@ void publish(Driver& f) {
   } else {
     throw std::runtime_error(reason("cannot exchange the work file with the result"));
   }
+  flock(f.fd, LOCK_UN);  // the result now: readers may lock it while the new work file is made
   // The new work file: the previous result when it held our previous commit and no reader has it
   // open, else a fresh copy.
   int spare = -1;
@@ -260,7 +261,7 @@ void publish(Driver& f) {
     ::close(spare);
     throw;
   }
-  ::close(f.fd);  // the published file; closing drops our lock on it
+  ::close(f.fd);  // the published file
   f.fd = spare;
   f.written.clear();
   f.published = true;
