@@ -141,6 +141,7 @@ int runWorkPrecision(const char* scenePath) {
     const model::SceneDescription scene = io::readScene(scenePath);
     if (scene.analysis != model::Analysis::Dynamic)
       throw InputError(std::string(scenePath) + ": analysis: work-precision needs a dynamic scene");
+    checkMemory(comm, scene, false);
     const model::DynamicsDesc& base = scene.dynamics;
     const bool joints = !scene.joints.empty();
     const std::string defaultSchemes = joints ? "generalized_alpha,newmark,hht" : "generalized_alpha,newmark,bdf:2,rk4,abm4";

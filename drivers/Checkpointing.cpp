@@ -3,6 +3,8 @@
 
 #include <petscsys.h>
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <filesystem>
 
@@ -89,28 +91,48 @@ void writeDynamicsCheckpoint(MPI_Comm comm, const model::SceneDescription& scene
   io::writeCheckpoint(comm, path, c);
 }
 
+namespace {
+// A whole number in [lo, hi] (a step or count written as a double attribute).
+bool wholeIn(double v, double lo, double hi) { return v >= lo && v <= hi && v == std::floor(v); }
+}  // namespace
+
 // -restart FILE: read and check against the scene (InputError names the file and what differs).
+// Every value the restart uses is checked here, before any output exists: a checkpoint is input
+// (issue 32 items 1, 2, 5: a NaN dt, a negative time or a step of 1e300 were accepted).
 io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& scene, const model::Model& model,
                                const std::string& path) {
-  io::CheckpointData data = io::readCheckpoint(comm, path);
+  io::CheckpointData data = io::readCheckpoint(comm, path, static_cast<size_t>(model.numDofs()));
   const auto& sc = data.scalars;
+  auto fail = [&](const std::string& why) { throw InputError(path + ": -restart: " + why); };
+  for (const auto& [key, value] : sc)  // the energy sums, times and counters alike
+    if (!std::isfinite(value)) fail("'" + key + "' is " + fmt("%g", value) + ", not a finite number");
   auto need = [&](const char* key) {
-    if (!sc.count(key)) throw InputError(path + ": -restart: the checkpoint has no '" + key + "'");
+    if (!sc.count(key)) fail(std::string("the checkpoint has no '") + key + "'");
     return sc.at(key);
   };
   const model::DynamicsDesc& d = scene.dynamics;
   if (need("coordinates") != model.numDofs())
-    throw InputError(path + ": -restart: the checkpoint has " + fmt("%.0f", need("coordinates")) +
-                     " coordinates, this scene " + std::to_string(model.numDofs()) +
-                     ": it was written for another model");
+    fail("the checkpoint has " + fmt("%.0f", need("coordinates")) + " coordinates, this scene " +
+         std::to_string(model.numDofs()) + ": it was written for another model");
   if (std::fabs(need("dt") - d.dt) > 1e-12 * d.dt)
-    throw InputError(path + ": -restart: the checkpoint's dt " + fmt("%g", need("dt")) +
-                     " differs from dynamics.dt " + fmt("%g", d.dt) + " of " + scene.file);
-  if (need("time") >= d.tEnd * (1.0 - 1e-12))
-    throw InputError(path + ": -restart: the checkpoint is at t = " + fmt("%g", need("time")) +
-                     " s, not before dynamics.t_end = " + fmt("%g", d.tEnd) + " s: nothing to continue");
-  need("step");
-  // every dataset the restart will read, present and of the model's size (checked on rank 0)
+    fail("the checkpoint's dt " + fmt("%g", need("dt")) + " differs from dynamics.dt " + fmt("%g", d.dt) + " of " +
+         scene.file);
+  const double time = need("time"), step = need("step");
+  if (time < 0.0) fail("the checkpoint's time " + fmt("%g", time) + " s is negative");
+  if (time >= d.tEnd * (1.0 - 1e-12))
+    fail("the checkpoint is at t = " + fmt("%g", time) + " s, not before dynamics.t_end = " + fmt("%g", d.tEnd) +
+         " s: nothing to continue");
+  if (!wholeIn(step, 0.0, INT_MAX)) fail("the checkpoint's step " + fmt("%g", step) + " is not a step number 0.." + std::to_string(INT_MAX));
+  // fixed steps: step n ends at n dt (an adaptive run's steps have no fixed length)
+  if (!d.adaptive && std::fabs(step - time / d.dt) > 0.5)
+    fail("step " + fmt("%.0f", step) + " and t = " + fmt("%.17g", time) + " s do not agree with dt " + fmt("%g", d.dt) +
+         " (step n ends at n dt)");
+  if (sc.count("newton_start") && !wholeIn(sc.at("newton_start"), 0.0, 2.0)) fail("newton_start must be 0, 1 or 2");
+  if (sc.count("bdf_order") && !wholeIn(sc.at("bdf_order"), 1.0, 5.0)) fail("bdf_order must be 1..5");
+  if (sc.count("bdf_steps") && !wholeIn(sc.at("bdf_steps"), 0.0, INT_MAX)) fail("bdf_steps must be a step count");
+  for (const auto& [key, value] : sc)
+    if (key.rfind("history_time_", 0) == 0 && (value < 0.0 || value > time)) fail("'" + key + "' is not within [0, time]");
+  // every dataset the restart will read, present, of the model's size and finite (checked on rank 0)
   int rank;
   MPI_Comm_rank(comm, &rank);
   std::string problem;
@@ -121,6 +143,8 @@ io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& sce
       if (it == data.vectors.end()) problem = "the checkpoint lacks /" + name;
       else if (it->second.size() != n)
         problem = "/" + name + " has " + std::to_string(it->second.size()) + " values, the model " + std::to_string(n);
+      else if (!std::all_of(it->second.begin(), it->second.end(), [](double x) { return std::isfinite(x); }))
+        problem = "/" + name + " holds values that are not finite";
     };
     check("X");
     check("V");
@@ -129,7 +153,7 @@ io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& sce
       check("a");
     }
     const double count = sc.count("history_count") ? sc.at("history_count") : 0.0;
-    if (!(count >= 0.0 && count <= 7.0) || count != std::floor(count)) problem = "history_count must be 0..7";
+    if (!wholeIn(count, 0.0, 7.0)) problem = "history_count must be 0..7";
     else if (count > 0.0 && !sc.count("history_step")) problem = "the checkpoint has no 'history_step'";
     else if (sc.count("bdf_order") && !sc.count("bdf_steps")) problem = "the checkpoint has no 'bdf_steps'";
     for (int k = 0; sc.count("bdf_order") && k < static_cast<int>(count) && problem.empty(); ++k)
@@ -144,17 +168,21 @@ io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& sce
   MPI_Bcast(&len, 1, MPI_INT, 0, comm);
   problem.resize(len);
   MPI_Bcast(problem.data(), len, MPI_CHAR, 0, comm);
-  if (!problem.empty()) throw InputError(path + ": -restart: " + problem);
+  if (!problem.empty()) fail(problem);
   return data;
+}
+
+void checkRestartIntegrator(const io::CheckpointData& data, const std::string& path, const solvers::Dynamics& dyn) {
+  if (data.integrator != dyn.signature())
+    throw InputError(path + ": -restart: the checkpoint was written by " + data.integrator +
+                     ", this run integrates with " + dyn.signature());
 }
 
 int resumeDynamics(MPI_Comm comm, const io::CheckpointData& data, const std::string& path, solvers::Problem& problem,
                    solvers::Dynamics& dyn, Vec X, Vec V) {
   int rank;
   MPI_Comm_rank(comm, &rank);
-  if (data.integrator != dyn.signature())
-    throw InputError(path + ": -restart: the checkpoint was written by " + data.integrator +
-                     ", this run integrates with " + dyn.signature());
+  checkRestartIntegrator(data, path, dyn);
   int missing = 0;
   if (rank == 0)
     for (const char* n : {"X", "V"}) missing += data.vectors.count(n) ? 0 : 1;

@@ -32,6 +32,10 @@ void writeDynamicsCheckpoint(MPI_Comm comm, const model::SceneDescription& scene
 io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& scene, const model::Model& model,
                                const std::string& path);
 
+// InputError unless the checkpoint was written by the integrator `dyn` runs (scheme, parameters, TS
+// type): called before any output is opened.
+void checkRestartIntegrator(const io::CheckpointData& data, const std::string& path, const solvers::Dynamics& dyn);
+
 // Loads X, V and the integrator's state from `data` into dyn (its next run() continues there) and
 // returns the checkpointed step. InputError if the integrator differs or a vector is missing.
 int resumeDynamics(MPI_Comm comm, const io::CheckpointData& data, const std::string& path, solvers::Problem& problem,

@@ -5,6 +5,7 @@
 #include <string>
 
 #include <mpi.h>
+#include <petscsys.h>
 
 #include "strand/model/SceneDescription.hpp"
 
@@ -38,5 +39,12 @@ inline std::string fmt(const char* f, double a) {
 }
 // The output file: -o FILE, else the scene's output.file, else <scene stem>.h5 in the working directory.
 std::string outputPath(const model::SceneDescription& scene);
+
+// Runs a solver's setFromOptions; a PETSc error there is bad input (InputError "PETSc options: ...").
+void applyOptions(MPI_Comm comm, const std::function<PetscErrorCode()>& setFromOptions);
+
+// Refuses (InputError) a scene whose estimated memory exceeds -max_memory SIZE or what the hosts
+// have, before anything is allocated (io/ResourceEstimate.hpp). Collective.
+void checkMemory(MPI_Comm comm, const model::SceneDescription& scene, bool modal);
 
 }  // namespace strand::drivers

@@ -12,6 +12,8 @@
 
 #include "Commands.hpp"
 #include "Progress.hpp"
+#include "Signals.hpp"
+#include "SolveGuard.hpp"
 #include "strand/core/Error.hpp"
 #include "strand/ffr/HubBeamDynamics.hpp"
 #include "strand/ffr/RadialPointInterpolation.hpp"
@@ -76,7 +78,7 @@ int runHubBeam(MPI_Comm comm, const model::SceneDescription& scene, const std::s
   }
   const model::DynamicsDesc& dyn = scene.dynamics;
   ffr::HubBeamDynamics solver(*hb, dyn);
-  PetscCallAbort(comm, solver.setFromOptions());
+  applyOptions(comm, [&] { return solver.setFromOptions(); });
 
   io::RunInfo info{scene.file, "dynamic", kVersion, 2};
   io::BodyLayout layout{"beam", "HubBeam", 1, 1, hb->deformationSize(), kSamples};
@@ -123,15 +125,28 @@ int runHubBeam(MPI_Comm comm, const model::SceneDescription& scene, const std::s
                     s.time / dyn.tEnd);
   };
   std::string failure;
+  solver.setStopCheck([&] {  // every rank integrates the same steps: agree after each
+    int stop = stopSignal() != 0 ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, comm);
+    return stop != 0;
+  });
   PetscLogDouble t0, t1;
   PetscTime(&t0);
-  PetscCallAbort(comm, solver.run(onStep, &failure));
+  const std::string error = guardSolve(comm, [&] { return solver.run(onStep, &failure); });
+  if (!error.empty())
+    failure = "the hub-beam integration failed after t = " + fmt("%.6g", last.time) + " s, step " +
+              std::to_string(last.step) + ": " + error + ". Try a smaller dynamics.dt, or check the scene's values";
   PetscTime(&t1);
   progress.finish();
-  const int code = failure.empty() ? kExitSuccess : kExitDiverged;
-  writer.setAttribute("status", code == kExitSuccess ? "ok" : "diverged");
+  const int code = !failure.empty() ? kExitDiverged : solver.stoppedByRequest() ? kExitStopped : kExitSuccess;
+  writer.setAttribute("status", code == kExitSuccess ? "ok" : code == kExitStopped ? "stopped" : "diverged");
   writer.setAttribute("wall_time_s", t1 - t0);
   writer.close();
+  if (code == kExitStopped) {
+    say("stopped by " + std::string(signalName(stopSignal())) + " at t = " + fmt("%.6g s", last.time) + ", step " +
+        std::to_string(last.step) + " (hub_beam runs have no checkpoint); output so far: " + out + " (status = stopped)");
+    return code;
+  }
   if (code != kExitSuccess) {
     if (rank == 0) std::fprintf(stderr, "strand: error: %s\n", failure.c_str());
     say("output so far: " + out + " (readable, status = diverged)");

@@ -14,11 +14,15 @@
 
 #include "Checkpointing.hpp"
 #include "Commands.hpp"
+#include "FileSafety.hpp"
 #include "Progress.hpp"
+#include "Signals.hpp"
+#include "SolveGuard.hpp"
 #include "strand/core/Error.hpp"
 #include "strand/io/Checkpoint.hpp"
 #include "strand/io/Frames.hpp"
 #include "strand/io/OutputWriter.hpp"
+#include "strand/io/ResourceEstimate.hpp"
 #include "strand/io/SceneReader.hpp"
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/ModalSolver.hpp"
@@ -46,6 +50,20 @@ std::string outputPath(const model::SceneDescription& scene) {
     const std::filesystem::path candidate = p.parent_path() / (p.stem().string() + suffix + p.extension().string());
     if (!std::filesystem::exists(candidate)) return candidate.string();
   }
+}
+
+void applyOptions(MPI_Comm comm, const std::function<PetscErrorCode()>& setFromOptions) {
+  const std::string error = guardSolve(comm, setFromOptions);
+  if (!error.empty()) throw InputError("PETSc options: " + error);
+}
+
+void checkMemory(MPI_Comm comm, const model::SceneDescription& scene, bool modal) {
+  char buf[64] = "";
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsGetString(nullptr, nullptr, "-max_memory", buf, sizeof(buf), &set);
+  const double limit = set ? io::parseBytes(buf) : 0.0;
+  if (set && limit <= 0.0) throw InputError(std::string("-max_memory ") + buf + ": not a size (e.g. 64G, 512M)");
+  io::checkResources(comm, scene, modal, limit);
 }
 
 namespace {
@@ -80,10 +98,30 @@ public:
     const bool modal = _mode == RunMode::ForceModes || _scene.analysis == model::Analysis::Modes;
     const std::string out = outputPath(_scene);
     const bool dynamic = !modal && _scene.analysis == model::Analysis::Dynamic;
+    // Everything that can refuse the run is checked before the output is opened (issue 32 item 2):
+    // the files (item 3), the checkpoint and the integrator it was written by.
+    RunFiles files = sceneFiles(_scene);
+    files.results.push_back({"the output", out});
+    files.companions = {{"the output's XDMF file", io::xdmfPathFor(out)}, {"the output's XDMF file", io::modesXdmfPathFor(out)}};
+    std::unique_ptr<solvers::Dynamics> dyn;
     if (dynamic) {
       _checkpoint = checkpointOptions(out);
-      if (!_checkpoint.restart.empty())  // bad input before any file is written
+      files.results.push_back({"-checkpoint", _checkpoint.path});
+      files.restart = _checkpoint.restart;
+    }
+    checkRunFiles(files, overwriteRequested());
+    std::unique_ptr<solvers::StaticSolver> statics;  // its PETSc options are input too
+    if (!dynamic && (!modal || hasLoads(_scene))) {
+      statics = std::make_unique<solvers::StaticSolver>(_problem.assembler(), _scene.statics.loadSteps);
+      applyOptions(_comm, [&] { return statics->setFromOptions(); });
+    }
+    if (dynamic) {
+      dyn = std::make_unique<solvers::Dynamics>(_problem.assembler(), _scene.dynamics);
+      applyOptions(_comm, [&] { return dyn->setFromOptions(); });
+      if (!_checkpoint.restart.empty()) {
         _restart = readRestart(_comm, _scene, _problem.model(), _checkpoint.restart);
+        checkRestartIntegrator(_restart, _checkpoint.restart, *dyn);
+      }
     }
     io::RunInfo info{_scene.file, modal ? "modes" : dynamic ? "dynamic" : "static", kVersion, m.dim()};
     _writer = std::make_unique<io::OutputWriter>(_comm, out, info, io::bodyLayouts(m, _scene.output.samplesPerElement));
@@ -97,12 +135,12 @@ public:
     int code = kExitSuccess;
     std::string failure;
     if (dynamic) {
-      code = dynamicSolve(X, &failure);  // writes the initial frame itself
+      code = dynamicSolve(*dyn, X, &failure);  // writes the initial frame itself
     } else {
       writeFrame(X, 0.0);
-      if (!modal || hasLoads(_scene)) code = staticSolve(X, &failure);
+      if (statics) code = staticSolve(*statics, X, &failure);
     }
-    if (code == kExitSuccess && modal) modes(X);
+    if (code == kExitSuccess && modal) code = modes(X, &failure);
     PetscTime(&t1);
     _progress.finish();
     _writer->setAttribute("status", code == kExitSuccess ? "ok" : code == kExitWallTime ? "stopped" : "diverged");
@@ -140,12 +178,15 @@ private:
     _writer->writeFrame(time, frames);
   }
 
-  int staticSolve(Vec X, std::string* failure) {
-    solvers::StaticSolver solver(_problem.assembler(), _scene.statics.loadSteps);
-    PetscCallAbort(_comm, solver.setFromOptions());
+  int staticSolve(solvers::StaticSolver& solver, Vec X, std::string* failure) {
+    solver.setStopCheck([] { return stopSignal() != 0; });
+    int lastStep = 0;
+    double lastFactor = 0.0;
     auto onStep = [&](const solvers::StaticStep& s, Vec Xs) -> PetscErrorCode {
       PetscFunctionBeginUser;
       _newtonTotal += s.newtonIterations;
+      lastStep = s.step;
+      lastFactor = s.loadFactor;
       _progress.update("load step " + std::to_string(s.step) + "  load factor " + fmt("%.4f", s.loadFactor) +
                        "  Newton " + std::to_string(s.newtonIterations) + "  |R| " + fmt("%.2e", s.residualNorm));
       PetscCallCXX(writeFrame(Xs, s.loadFactor));
@@ -154,20 +195,27 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("residual_norm", s.residualNorm));
       PetscFunctionReturn(0);
     };
-    PetscCallAbort(_comm, solver.solve(X, onStep, failure));
+    const std::string error = guardSolve(_comm, [&] { return solver.solve(X, onStep, failure); });
+    if (!error.empty())
+      *failure = "the static solve failed in load step " + std::to_string(lastStep + 1) + " (from load factor " +
+                 fmt("%.4g", lastFactor) + "): " + error + ". Check the supports (a free body or a mechanism has no "
+                 "static stiffness) and the scene's values";
+    if (failure->empty() && solver.stoppedByRequest()) {
+      *failure = "stopped by " + std::string(signalName(stopSignal())) + " after load step " + std::to_string(lastStep) +
+                 " (load factor " + fmt("%.4g", lastFactor) + "); a static run has no checkpoint: run it again to finish";
+      return kExitStopped;
+    }
     return failure->empty() ? kExitSuccess : kExitDiverged;
   }
 
   // Time integration from the reference shape at rest; a frame every output_every steps and at the
   // end, the energy monitor, Newton iterations, the step size and the rejected steps (since the start)
   // every step (/series).
-  int dynamicSolve(Vec X, std::string* failure) {
+  int dynamicSolve(solvers::Dynamics& dyn, Vec X, std::string* failure) {
     const model::DynamicsDesc& d = _scene.dynamics;
     Vec V;
     PetscCallAbort(_comm, VecDuplicate(X, &V));
     PetscCallAbort(_comm, _problem.assembler().initialVelocity(V));
-    solvers::Dynamics dyn(_problem.assembler(), d);
-    PetscCallAbort(_comm, dyn.setFromOptions());
     if (!_checkpoint.restart.empty()) {
       _firstStep = resumeDynamics(_comm, _restart, _checkpoint.restart, _problem, dyn, X, V);
       say("restart from " + _checkpoint.restart + " at t = " + fmt("%.6g", _restart.scalars.at("time")) + " s, step " +
@@ -176,12 +224,15 @@ private:
     _writer->setAttribute("integrator", dyn.schemeName());
     PetscLogDouble start;
     PetscTime(&start);
-    if (_checkpoint.wallTime > 0.0)
-      dyn.setStopCheck([&] {
+    bool wallTimeReached = false;
+    dyn.setStopCheck([&] {  // the wall-time limit or a batch job's stop signal (Signals.hpp)
+      if (_checkpoint.wallTime > 0.0 && !wallTimeReached) {
         PetscLogDouble now;
         PetscTime(&now);
-        return now - start > _checkpoint.wallTime;
-      });
+        wallTimeReached = now - start > _checkpoint.wallTime;
+      }
+      return wallTimeReached || stopSignal() != 0;
+    });
     _writer->setAttribute("dt", d.dt);
     const bool moving = _problem.model().hasPrescribedMotion();
     const bool joints = _problem.model().hasConstraints();
@@ -191,9 +242,11 @@ private:
     const auto& rigid = _problem.model().rigidBodies();
     const int dim = _problem.model().dim();
     const std::vector<double>& q0 = _problem.model().initialCoordinates();
+    solvers::DynamicsStep reached;
     auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec Vs) -> PetscErrorCode {
       PetscFunctionBeginUser;
       _newtonTotal += s.newtonIterations;
+      reached = s;
       const bool last = s.time >= d.tEnd * (1.0 - 1e-12);
       // frames every output_every steps, or at the first step at or after each multiple of dt_out
       const double slack = 1e-9 * d.dt;
@@ -252,7 +305,13 @@ private:
                        s.time / d.tEnd);
       PetscFunctionReturn(0);
     };
-    PetscCallAbort(_comm, dyn.run(X, V, onStep, failure));
+    const std::string error = guardSolve(_comm, [&] { return dyn.run(X, V, onStep, failure); });
+    if (!error.empty()) {
+      *failure = std::string(dyn.schemeName()) + " failed after t = " + fmt("%.6g", reached.time) + " s, step " +
+                 std::to_string(reached.step) + ": " + error + ". Try a smaller dynamics.dt, or check the scene's values";
+      VecDestroy(&V);
+      return kExitDiverged;
+    }
     const std::string newtonStart = dyn.newtonStart();  // the first step's check or a Newton failure may change it
     if (!newtonStart.empty()) {
       _writer->setAttribute("newton_start", newtonStart);
@@ -264,7 +323,9 @@ private:
       writeDynamicsCheckpoint(_comm, _scene, _problem, dyn, X, V, _checkpoint.path);
       solvers::ResumeState at;
       PetscCallAbort(_comm, dyn.saveState(&at));
-      *failure = "stopped at the wall-time limit (-wall_time " + fmt("%g", _checkpoint.wallTime) + " s) at t = " +
+      const std::string why = wallTimeReached ? "at the wall-time limit (-wall_time " + fmt("%g", _checkpoint.wallTime) + " s)"
+                                              : "by " + std::string(signalName(stopSignal()));
+      *failure = "stopped " + why + " at t = " +
                  fmt("%.6g", at.time) + " s, step " + std::to_string(at.step) + "; checkpoint: " + _checkpoint.path +
                  ". Continue with: strand run " + _scene.file + " -restart " + _checkpoint.path +
                  (dyn.exactRestart() ? "" : " (this integrator restarts its multistep start-up: the continued "
@@ -275,11 +336,20 @@ private:
     return code;
   }
 
-  void modes(Vec X) {
+  int modes(Vec X, std::string* failure) {
     solvers::ModalResult r;
     {
       solvers::ModalSolver solver(_problem.assembler(), solvers::modalOptions(_scene.modes));
-      PetscCallAbort(_comm, solver.solve(X, &r));
+      const std::string error = guardSolve(_comm, [&] { return solver.solve(X, &r); });
+      for (size_t k = 0; k < r.omega.size() && error.empty(); ++k)
+        if (!std::isfinite(r.omega[k]) || !std::isfinite(r.relativeResidual[k]))
+          *failure = "the modal solve gave a non-finite frequency (mode " + std::to_string(k + 1) + ")";
+      if (!error.empty()) *failure = "the modal solve failed: " + error;
+      if (!failure->empty()) {
+        *failure += ". Check the supports and the section values";
+        solvers::destroyModes(&r);
+        return kExitDiverged;
+      }
     }
     const double T = _problem.model().scales().time();
     std::vector<double> hz;
@@ -298,13 +368,16 @@ private:
       PetscCallAbort(_comm, _problem.assembler().gatherToRoot(Y, q));
       shapes.push_back(_rank == 0 ? io::makeFrames(_problem.model(), q, _scene.output.samplesPerElement)
                                   : std::vector<io::BodyFrame>{});
-      say("mode " + std::to_string(k + 1) + ": " + fmt("%.8g Hz", hz.back()) + "  (omega " +
-          fmt("%.8g rad/s", r.omega[k]) + ", omega_bar " + fmt("%.8g", r.omega[k] * T) + ", residual " +
-          fmt("%.1e", r.relativeResidual[k]) + ")");
+      say("mode " + std::to_string(k + 1) + ": " + fmt("%.8g Hz", hz.back()) + "  (" +
+          (r.rigid[k] ? std::string("rigid-body mode") : "omega " + fmt("%.8g rad/s", r.omega[k]) + ", omega_bar " +
+                                                             fmt("%.8g", r.omega[k] * T)) +
+          ", residual " + fmt("%.1e", r.relativeResidual[k]) + ")");
     }
+    if (!r.note.empty()) say("note: " + r.note);
     _writer->writeModes(hz, shapes);
     VecDestroy(&Y);
     solvers::destroyModes(&r);
+    return kExitSuccess;
   }
 
   void summary(Vec X) {
@@ -361,11 +434,19 @@ int runScene(const char* scenePath, RunMode mode) {
   return guarded(comm, [&] {
     const model::SceneDescription scene = io::readScene(scenePath);
     if (scene.hubBeam.present) {
+      checkMemory(comm, scene, false);
       if (mode == RunMode::ForceModes)
         throw InputError(scene.hubBeam.mark.where() + ": 'strand modes' needs a body scene; a hub_beam scene runs "
                          "its dynamics with 'strand run'");
-      return runHubBeam(comm, scene, outputPath(scene));
+      const std::string out = outputPath(scene);
+      RunFiles files = sceneFiles(scene);
+      files.results.push_back({"the output", out});
+      files.companions.push_back({"the output's XDMF file", io::xdmfPathFor(out)});
+      checkRunFiles(files, overwriteRequested());
+      return runHubBeam(comm, scene, out);
     }
+    if (mode == RunMode::ForceModes) io::requireModalScene(scene);
+    checkMemory(comm, scene, mode == RunMode::ForceModes || scene.analysis == model::Analysis::Modes);
     SceneRun run(comm, scene, mode);
     return run.execute();
   });

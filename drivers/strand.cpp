@@ -6,8 +6,8 @@
 //   strand plot KIND FILE [-o PNG]                charts (runs drivers/plot/strand_plot.py)
 //   strand help [COMMAND]
 //
-// Exit codes: 0 success, 1 internal error, 2 bad input (scene or options), 3 solve diverged,
-// 4 stopped at the wall-time limit with a checkpoint.
+// Exit codes: 0 success, 1 internal error, 2 bad input (scene or options), 3 solve diverged or
+// failed, 4 stopped at the wall-time limit or by SIGTERM, SIGINT or SIGUSR1 (with a checkpoint).
 #include <slepcsys.h>
 
 #include <unistd.h>
@@ -20,6 +20,8 @@
 #include <vector>
 
 #include "Commands.hpp"
+#include "Signals.hpp"
+#include "Terminal.hpp"
 #include "strand/core/Error.hpp"
 
 namespace {
@@ -39,8 +41,8 @@ const char* kUsage =
     "                integrators x step sizes against a reference: JSON lines + PNG chart\n"
     "  help [CMD]    this text, or the help of one command\n"
     "\n"
-    "Exit codes: 0 success, 1 internal error, 2 bad input, 3 solve diverged,\n"
-    "4 stopped at the wall-time limit (checkpoint written).\n"
+    "Exit codes: 0 success, 1 internal error, 2 bad input, 3 solve diverged or failed,\n"
+    "4 stopped at the wall-time limit or by SIGTERM/SIGINT/SIGUSR1 (checkpoint written).\n"
     "Scenes are YAML files (docs/scene-reference.md); examples in meshes/.\n";
 
 const char* kRunHelp =
@@ -63,6 +65,10 @@ const char* kRunHelp =
     "  -checkpoint_every N  write the checkpoint every N steps\n"
     "  -wall_time S      stop after S seconds of integration: checkpoint, exit code 4\n"
     "  -restart FILE     continue a dynamic run from a checkpoint (any number of ranks)\n"
+    "  -overwrite        replace an existing output (else an existing result is refused)\n"
+    "  -max_memory SIZE  refuse a scene whose memory estimate exceeds SIZE (e.g. 64G; default:\n"
+    "                    what the host has)\n"
+    "SIGTERM, SIGINT, SIGUSR1: finish the step, checkpoint, status = stopped, exit code 4\n"
     "  -log_view         PETSc performance summary (events Strand:*)\n"
     "Run under mpirun for parallel solves: mpirun -n 2 strand run SCENE\n";
 
@@ -153,6 +159,8 @@ int main(int argc, char** argv) {
       return strand::kExitBadInput;
     }
     if (SlepcInitialize(&argc, &argv, nullptr, nullptr)) return strand::kExitInternal;
+    strand::drivers::installStopSignals();
+    strand::drivers::lineBufferBatchOutput();
     const int code = strand::drivers::runWorkPrecision(argv[3]);
     SlepcFinalize();
     return code;
@@ -160,6 +168,8 @@ int main(int argc, char** argv) {
   const char* scene = argv[2];
   // PETSc sees every argument; positional ones are ignored by its options parser.
   if (SlepcInitialize(&argc, &argv, nullptr, nullptr)) return strand::kExitInternal;
+  strand::drivers::installStopSignals();  // after PETSc's own handlers (Signals.hpp)
+  strand::drivers::lineBufferBatchOutput();
   const int code = cmd == "sweep" ? strand::drivers::runSweepScene(scene)
                    : strand::drivers::runScene(scene, cmd == "modes" ? strand::drivers::RunMode::ForceModes
                                                                      : strand::drivers::RunMode::SceneAnalysis);

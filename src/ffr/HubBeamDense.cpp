@@ -114,6 +114,10 @@ PetscErrorCode HubBeamDynamics::runDenseAlpha() {
     record(step, t, q, v, its, 0, &A);
     _stop = divergence(t, step, q.allFinite() && v.allFinite(), _last.obs);  // recorded just above
     if (!_stop.empty()) break;
+    if (stopRequested()) {  // a batch job's stop signal: end after this step
+      _stopped = true;
+      break;
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -228,6 +232,10 @@ PetscErrorCode HubBeamDynamics::runDenseBdf() {
     record(step, t, y.head(n), y.tail(n), its, 0, &a);
     _stop = divergence(t, step, y.allFinite(), _last.obs);  // recorded just above
     if (!_stop.empty()) break;
+    if (stopRequested()) {  // a batch job's stop signal: end after this step
+      _stopped = true;
+      break;
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -273,6 +281,10 @@ PetscErrorCode HubBeamDynamics::runDenseExplicit() {
     record(step, t, y.head(n), y.tail(n), 0, 0, &an);
     _stop = divergence(t, step, y.allFinite(), _last.obs);  // recorded just above
     if (!_stop.empty()) break;
+    if (stopRequested()) {  // a batch job's stop signal: end after this step
+      _stopped = true;
+      break;
+    }
   }
   PetscFunctionReturn(0);
 }

@@ -301,6 +301,10 @@ PetscErrorCode HubBeamDynamics::checkState(TS ts) {
   const HubBeam::Observation o = _model.observe(t, q, v, Eigen::VectorXd::Zero(_n));
   _stop = divergence(t, static_cast<int>(step), q.allFinite() && v.allFinite(), o);
   if (!_stop.empty()) PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
+  else if (stopRequested()) {
+    _stopped = true;
+    PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -322,12 +326,15 @@ std::string HubBeamDynamics::divergence(double t, int step, bool finite, const H
   return m.str();
 }
 
+bool HubBeamDynamics::stopRequested() { return _stopCheck && _stopCheck(); }
+
 PetscErrorCode HubBeamDynamics::run(const StepCallback& onStep, std::string* failure) {
   PetscFunctionBeginUser;
   _onStep = &onStep;
   _haveLast = false;
   _lastIterations = 0;
   _stop.clear();
+  _stopped = false;
   failure->clear();
   if (_dense) {
     PetscCall(runDense());

@@ -17,6 +17,7 @@
 
 #include "strand/core/Error.hpp"
 
+#include "CommittedFile.hpp"
 #include "Hdf5.hpp"
 
 namespace strand::io {
@@ -239,7 +240,10 @@ struct OutputWriter::Impl {
                                     "' needs elements, nodes, coordsPerNode >= 1 and pointsPerBody >= 2");
     }
 
-    hid_t fid = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    // written through the committing driver: the result changes only by atomic commits
+    // (CommittedFile.hpp), so a killed run leaves the file of its last commit
+    Hid fapl(committedFileAccess(), H5Pclose);
+    hid_t fid = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
     if (fid < 0) throw InputError("cannot create output file '" + path + "': " + hdf5Reason());
     file = Hid(fid, H5Fclose);
 
@@ -277,6 +281,7 @@ struct OutputWriter::Impl {
       writeAttribute(framesGroup.get(), "count", 0);
       Hid seriesGroup = group(root, "series");
       check(H5Fflush(root, H5F_SCOPE_GLOBAL), "cannot flush");
+      commit(root);
       // An empty (valid) collection now, so a run that dies before its first frame still leaves
       // a consistent pair, and an unwritable .xmf location is reported at creation.
       writeFileAtomically(xdmfPath, xdmfDocument("frames", ""));
@@ -301,7 +306,8 @@ struct OutputWriter::Impl {
       }
       updateAttribute(framesGroup.get(), "count", frames + 1);
       check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "cannot flush");
-      // The .xmf only ever names data that is already flushed.
+      commit(file.get());
+      // The .xmf only ever names data that is already committed.
       writeFileAtomically(xdmfPath, xdmfDocument("frames", frameGrids + grid));
     } catch (...) {
       // Best effort: leave the file as it was before this frame, so that the .xmf (still the old
@@ -378,6 +384,7 @@ struct OutputWriter::Impl {
       }
       modes.close("cannot close group '/modes'");
       check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "cannot flush");
+      commit(file.get());
       writeFileAtomically(modesXdmfPath, xdmfDocument("modes", grids));
     } catch (...) {
       H5Ldelete(file.get(), "modes", H5P_DEFAULT);  // best effort: allow a retry
@@ -413,12 +420,27 @@ struct OutputWriter::Impl {
     series.clear();
     attempt([&] { framesGroup.close("cannot close group '/frames'"); });
     if (file) {
-      attempt([&] { check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "cannot flush"); });
+      bool flushed = false;
+      attempt([&] {
+        check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "cannot flush");
+        flushed = true;
+      });
+      if (flushed) attempt([&] { commit(file.get()); });
       attempt([&] { file.close("cannot close"); });
     }
     if (!firstError.empty()) throw Hdf5Failure(firstError);
   }
 };
+
+std::string xdmfPathFor(const std::string& h5Path) {
+  const std::filesystem::path p(h5Path);
+  return (p.parent_path() / (p.stem().string() + ".xmf")).string();
+}
+
+std::string modesXdmfPathFor(const std::string& h5Path) {
+  const std::filesystem::path p(h5Path);
+  return (p.parent_path() / (p.stem().string() + "_modes.xmf")).string();
+}
 
 OutputWriter::OutputWriter(MPI_Comm comm, std::string path, RunInfo info, std::vector<BodyLayout> bodies)
     : impl_(std::make_unique<Impl>()) {
@@ -428,12 +450,9 @@ OutputWriter::OutputWriter(MPI_Comm comm, std::string path, RunInfo info, std::v
   I.path = std::move(path);
   I.info = std::move(info);
   I.bodies = std::move(bodies);
-  namespace fs = std::filesystem;
-  const fs::path p(I.path);
-  const std::string stem = p.stem().string();
-  I.xdmfPath = (p.parent_path() / (stem + ".xmf")).string();
-  I.modesXdmfPath = (p.parent_path() / (stem + "_modes.xmf")).string();
-  I.h5Ref = xmlEscape(p.filename().string());
+  I.xdmfPath = xdmfPathFor(I.path);
+  I.modesXdmfPath = modesXdmfPathFor(I.path);
+  I.h5Ref = xmlEscape(std::filesystem::path(I.path).filename().string());
   I.collective("create", [&] {
     if (I.path.empty()) throw InputError("cannot create output file '': empty file name");
     I.create();

@@ -5,12 +5,15 @@
 // each check can throw "<file>:<line>: <key>: <reason>" without passing places around by hand.
 #include "strand/io/SceneReader.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -34,6 +37,10 @@ using model::Vec3;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRelTol = 1e-12;  // "zero" for lengths and angles, relative to the coordinates
+// Input files are read whole into memory: bounded. yaml-cpp keeps a few hundred bytes per scalar,
+// so a 16 MB scene can take a few GB; a CSV row costs 24 bytes per point.
+constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t(16) << 20;
+constexpr std::uintmax_t kMaxPolylineBytes = std::uintmax_t(256) << 20;
 
 // ------------------------------------------------------------------------------------------------
 // Text and vector helpers
@@ -65,10 +72,72 @@ std::string aleKindNames() {
   return join(names);
 }
 
+// The length of the UTF-8 sequence that starts at s[i] (1-4), or 0 if it is not valid UTF-8
+// (overlong forms, surrogates and code points above U+10FFFF included).
+size_t utf8Length(const std::string& s, size_t i) {
+  const auto byte = [&](size_t k) { return k < s.size() ? static_cast<unsigned char>(s[k]) : 0u; };
+  const unsigned c = byte(i);
+  const auto cont = [&](size_t k) { return (byte(k) & 0xC0u) == 0x80u; };
+  if (c < 0x80) return 1;
+  if (c >= 0xC2 && c <= 0xDF) return cont(i + 1) ? 2 : 0;
+  if (c >= 0xE0 && c <= 0xEF) {
+    const unsigned c1 = byte(i + 1);
+    if ((c == 0xE0 && c1 < 0xA0) || (c == 0xED && c1 > 0x9F)) return 0;  // overlong, surrogate
+    return cont(i + 1) && cont(i + 2) ? 3 : 0;
+  }
+  if (c >= 0xF0 && c <= 0xF4) {
+    const unsigned c1 = byte(i + 1);
+    if ((c == 0xF0 && c1 < 0x90) || (c == 0xF4 && c1 > 0x8F)) return 0;  // overlong, > U+10FFFF
+    return cont(i + 1) && cont(i + 2) && cont(i + 3) ? 4 : 0;
+  }
+  return 0;
+}
+
+// Empty when `s` is UTF-8 text without control characters, else the reason.
+std::string textProblem(const std::string& s) {
+  for (size_t i = 0; i < s.size();) {
+    const size_t n = utf8Length(s, i);
+    char b[96];
+    if (n == 0) {
+      std::snprintf(b, sizeof b, "not UTF-8 text (byte 0x%02x at offset %zu)", static_cast<unsigned char>(s[i]), i);
+      return b;
+    }
+    if (n == 1 && (static_cast<unsigned char>(s[i]) < 0x20 || s[i] == 0x7f)) {
+      std::snprintf(b, sizeof b, "control character 0x%02x at offset %zu", static_cast<unsigned char>(s[i]), i);
+      return b;
+    }
+    i += n;
+  }
+  return "";
+}
+
 std::string trim(const std::string& s) {
   const auto first = s.find_first_not_of(" \t\r\n");
   if (first == std::string::npos) return "";
   return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+// A value as a message may show it: bytes that are not UTF-8 text or are control characters become
+// \xNN, and anything beyond `max` characters is cut ("... (N bytes)"): an error message must not
+// echo a 2 MB value (issue 32 item 10).
+std::string printable(const std::string& s, size_t max = 60) {
+  std::string out;
+  size_t i = 0;
+  while (i < s.size() && out.size() < max) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const size_t n = utf8Length(s, i);
+    if (n == 0 || c < 0x20 || c == 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02x", c);
+      out += b;
+      ++i;
+    } else {
+      out.append(s, i, n);
+      i += n;
+    }
+  }
+  if (i < s.size()) out += "... (" + std::to_string(s.size()) + " bytes)";
+  return out;
 }
 
 // What a node holds, for "expected X (got Y)" messages.
@@ -76,9 +145,7 @@ std::string describe(const YAML::Node& n) {
   if (!n.IsDefined() || n.IsNull()) return "nothing";
   if (n.IsMap()) return "a map";
   if (n.IsSequence()) return "a list";
-  std::string s = n.Scalar();
-  if (s.size() > 40) s = s.substr(0, 37) + "...";
-  return "'" + s + "'";
+  return "'" + printable(n.Scalar(), 40) + "'";
 }
 
 Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -113,7 +180,8 @@ std::string vectorProblem(const std::vector<double>& v, int dim) {
 Vec3 toVec3(const std::vector<double>& v) { return {v[0], v[1], v.size() > 2 ? v[2] : 0.0}; }
 
 [[noreturn]] void failAt(const SourceMark& mark, const std::string& reason) {
-  throw InputError(mark.where() + ": " + reason);
+  constexpr size_t kMax = 2000;  // the longest list of allowed keys is far shorter
+  throw InputError(mark.where() + ": " + (reason.size() > kMax ? reason.substr(0, kMax) + "... (cut)" : reason));
 }
 
 // 1-based line of a node, or `fallback` when yaml-cpp does not know it.
@@ -184,12 +252,34 @@ public:
     if (!std::isfinite(v)) fail("must be a finite number (got " + describe(node_) + ")");
     return v;
   }
-  long integer(const char* what = "an integer") const { return scalarAs<long>(what); }
+  // A decimal integer: yaml-cpp reads YAML 1.1's 010 as octal 8 and 0x10 as 16; a scene is
+  // decimal, and a leading zero is refused rather than guessed (issue 32 item 10).
+  long integer(const char* what = "an integer") const {
+    const std::string t = scalarAs<std::string>(what);
+    const std::string expected = std::string("expected ") + what + " (got " + describe(node_) + ")";
+    const size_t sign = !t.empty() && (t[0] == '+' || t[0] == '-') ? 1 : 0;
+    if (t.size() > sign + 1 && t[sign] == '0' && std::isdigit(static_cast<unsigned char>(t[sign + 1])))
+      fail(expected + ": a leading 0 (YAML 1.1 reads " + printable(t, 20) + " as an octal number); write it without");
+    long v = 0;
+    const char* begin = t.data() + (sign == 1 && t[0] == '+' ? 1 : 0);
+    const auto [end, ec] = std::from_chars(begin, t.data() + t.size(), v, 10);
+    if (t.size() == sign || ec != std::errc() || end != t.data() + t.size()) fail(expected);
+    return v;
+  }
   bool boolean() const { return scalarAs<bool>("true or false"); }
-  std::string text() const { return scalarAs<std::string>("a string"); }
+  // Any text value: UTF-8 without control characters (names become HDF5 groups and XML, issue 32
+  // item 10).
+  std::string text() const {
+    std::string t = scalarAs<std::string>("a string");
+    if (const std::string problem = textProblem(t); !problem.empty()) fail(problem);
+    return t;
+  }
 
 private:
-  std::string childKey(const std::string& name) const { return key_.empty() ? name : key_ + "." + name; }
+  std::string childKey(const std::string& name) const {
+    const std::string shown = printable(name, 60);
+    return key_.empty() ? shown : key_ + "." + shown;
+  }
   void requirePresent() const {
     if (!present()) fail("missing required value");
   }
@@ -252,7 +342,7 @@ const auto& pick(const Field& f, const char* what, const Table& table) {
     if (s == entry.name) return entry;
     names.emplace_back(entry.name);
   }
-  f.fail("unknown " + std::string(what) + " '" + s + "'; allowed: " + join(names));
+  f.fail("unknown " + std::string(what) + " '" + printable(s) + "'; allowed: " + join(names));
 }
 
 // A position, force or direction (see vectorProblem).
@@ -328,7 +418,7 @@ model::TimeFunction readTimeFunction(const Field& f) {
     for (size_t i = 1; i < tf.times.size(); ++i)
       if (!(tf.times[i] > tf.times[i - 1])) f.child("time").fail("times must increase (entry " + std::to_string(i) + ")");
   } else {
-    f.child("function").fail("unknown time function '" + kind + "'; allowed: constant, linear, ramp, sine, spin_up, table");
+    f.child("function").fail("unknown time function '" + printable(kind) + "'; allowed: constant, linear, ramp, sine, spin_up, table");
   }
   return tf;
 }
@@ -341,6 +431,10 @@ struct Choice {
   const char* name;
   E value;
 };
+
+const char* const kNoConstrainedModes =
+    "modal analysis of rigid bodies and joints is not supported yet (analysis: modes and strand modes); use static "
+    "or dynamic";
 
 const Choice<model::Analysis> kAnalyses[] = {{"static", model::Analysis::Static},
                                              {"modes", model::Analysis::Modes},
@@ -416,6 +510,7 @@ struct Context {
   std::string file;   // for messages
   fs::path sceneDir;  // polyline CSV files are relative to it
   int dim = 3;
+  std::vector<std::string>* inputs = nullptr;  // SceneDescription::inputFiles: every file read
 };
 
 void readLine(const Field& f, const Context& ctx, GeometryDesc& g) {
@@ -448,6 +543,12 @@ std::vector<int> readPolylineCsv(const Field& f, const Context& ctx, std::vector
   if (path.is_relative()) path = ctx.sceneDir / path;
   std::ifstream in(path);
   if (!in || fs::is_directory(path)) f.fail("cannot open polyline file '" + path.string() + "'");
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) f.fail("'" + path.string() + "' is not a regular file");
+  if (const auto size = fs::file_size(path, ec); ec || size > kMaxPolylineBytes)
+    f.fail("'" + path.string() + "' has " + std::to_string(size) + " bytes, more than a polyline file may have (" +
+           std::to_string(kMaxPolylineBytes >> 20) + " MB)");
+  if (ctx.inputs) ctx.inputs->push_back(path.string());
   std::vector<int> lines;
   std::string row;
   for (int lineNo = 1; std::getline(in, row); ++lineNo) {
@@ -461,7 +562,7 @@ std::vector<int> readPolylineCsv(const Field& f, const Context& ctx, std::vector
       double x = 0.0;
       const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), x);
       if (cell.empty() || ec != std::errc() || end != cell.data() + cell.size() || !std::isfinite(x))
-        f.fail(where + "expected comma-separated numbers x,y or x,y,z (got '" + row + "')");
+        f.fail(where + "expected comma-separated numbers x,y or x,y,z (got '" + printable(row) + "')");
       v.push_back(x);
     }
     if (const std::string problem = vectorProblem(v, ctx.dim); !problem.empty()) f.fail(where + problem);
@@ -696,6 +797,7 @@ class SceneParser {
 public:
   explicit SceneParser(const std::string& file) : ctx_{file, fs::path(file).parent_path(), 3} {
     scene_.file = file;
+    ctx_.inputs = &scene_.inputFiles;
   }
 
   model::SceneDescription parse(const YAML::Node& rootNode) {
@@ -704,6 +806,10 @@ public:
     root.expectMap({"analysis", "dimension", "discretization", "bodies", "rigid_bodies", "joints", "supports",
                     "junctions", "loads", "static", "modes", "rotation", "sweep", "dynamics", "output", "hub_beam"});
     scene_.analysis = pick(root.child("analysis"), "analysis", kAnalyses).value;
+    scene_.analysisMark = root.child("analysis").mark();
+    if (scene_.analysis == model::Analysis::Modes &&
+        (root.child("rigid_bodies").present() || root.child("joints").present()))
+      failAt(scene_.analysisMark, kNoConstrainedModes);  // before their own checks: as `strand modes` says
     if (const Field f = root.child("hub_beam"); f.present()) return parseHubBeamScene(root, f);
     scene_.dimension = ctx_.dim = requireIntInRange(root.child("dimension"), 2, 3);
     if (const Field f = root.child("discretization"); f.present()) readDiscretization(f);
@@ -711,8 +817,7 @@ public:
     readBodies(root.child("bodies"), rigid.present());
     if (rigid.present()) readRigidBodies(rigid);
     if (const Field f = root.child("joints"); f.present()) readJoints(f);
-    if ((rigid.present() || root.child("joints").present()) && scene_.analysis == model::Analysis::Modes)
-      root.child("analysis").fail("modal analysis of rigid bodies and joints is not supported yet; use static or dynamic");
+
     if (const Field f = root.child("supports"); f.present()) readSupports(f);
     if (const Field f = root.child("junctions"); f.present()) readJunctions(f);
     if (const Field f = root.child("loads"); f.present()) readLoads(f);
@@ -748,6 +853,9 @@ public:
     }
     if (const Field f = root.child("output"); f.present()) readOutput(f);
     checkCatenaryDefaults();
+    checkOutputNames();
+    checkRepresentable();
+    if (!scene_.sweep.present) scene_.sweep.mark = {ctx_.file, root.line(), "sweep"};  // `strand sweep` names it
     return scene_;
   }
 
@@ -786,6 +894,7 @@ private:
     for (const HubBeamKey& k : kHubBeamBeamKeys) beamKeys.emplace_back(k.name);
     beam.expectMap(beamKeys);
     for (const HubBeamKey& k : kHubBeamBeamKeys) h.*k.field = requirePositive(beam.child(k.name));
+    checkSection(beam.mark(), h.E, h.A, h.I, h.rho, h.length);
 
     readHubBeamHub(f.child("hub"), h);
     if (const Field c = f.child("coupling"); c.present()) h.coupling = pick(c, "coupling", kHubBeamCouplings).value;
@@ -909,6 +1018,11 @@ private:
     d.dt = requirePositive(f.child("dt"));
     d.tEnd = requirePositive(f.child("t_end"));
     if (d.dt > d.tEnd) f.child("dt").fail("larger than t_end");
+    // a fixed-step run counts its steps in a 32-bit PETSc integer (issue 32 item 8: 3e9 steps
+    // ended in a PETSc abort, exit 63)
+    if (!d.adaptive && std::ceil(d.tEnd / d.dt) + 2.0 > double(INT_MAX))
+      f.child("dt").fail("t_end / dt = " + fmt(d.tEnd / d.dt, 3) + " steps, more than a run can count (" +
+                         std::to_string(INT_MAX - 2) + "); use a larger dt");
     if (const Field k = f.child("output_every"); k.present()) d.outputEvery = requireIntAtLeast(k, 1);
     if (const Field o = f.child("dt_out"); o.present()) {
       if (f.child("output_every").present()) o.fail("give either 'output_every' (steps) or 'dt_out' (seconds), not both");
@@ -1017,7 +1131,7 @@ private:
       if (b.name == wanted) return b;
       names.push_back(b.name);
     }
-    name.fail("no body named '" + wanted + "'; bodies: " + join(names));
+    name.fail("no body named '" + printable(wanted) + "'; bodies: " + join(names));
   }
 
   // The `body` and `node` keys of `f` (which the caller has checked for allowed keys).
@@ -1079,7 +1193,7 @@ private:
           const std::string c = e.text();
           const int k = c == "x" ? 0 : c == "y" ? 1 : (D == 2 && c == "phi") || (D == 3 && c == "z") ? 2 : -1;
           if (k < 0)
-            e.fail("unknown coordinate '" + c + (D == 2 ? "'; allowed: x, y, phi" : "'; allowed: x, y, z (a 3D body's orientation is held by joints)"));
+            e.fail("unknown coordinate '" + printable(c) + (D == 2 ? "'; allowed: x, y, phi" : "'; allowed: x, y, z (a 3D body's orientation is held by joints)"));
           if (std::find(r.fixed.begin(), r.fixed.end(), k) != r.fixed.end()) e.fail("listed twice");
           r.fixed.push_back(k);
         }
@@ -1295,6 +1409,51 @@ private:
       scene_.output.samplesPerElement = requireIntAtLeast(samples, 1);
   }
 
+  // Values that are valid one by one but whose products leave double precision: the stiffness and
+  // mass of a section, the time scale rho A L^4 / (E I). E 1e308 or A 1e-300 ended in PETSc aborts
+  // (zero pivots, NaN tolerances; issue 32 item 8). Each must lie within [1e-100, 1e100], far
+  // outside any physical scene and far inside double precision, so that their squares stay finite.
+  static bool representable(double v) { return std::isfinite(v) && std::fabs(v) >= 1e-100 && std::fabs(v) <= 1e100; }
+
+  static void checkSection(const SourceMark& at, double E, double A, double I, double rho, double length) {
+    const std::pair<const char*, double> products[] = {{"E A", E * A},
+                                                       {"E I", E * I},
+                                                       {"rho A", rho * A},
+                                                       {"the length", length},
+                                                       {"rho A L^4 / (E I)", rho * A * std::pow(length, 4) / (E * I)}};
+    for (const auto& [name, v] : products)
+      if (!representable(v))
+        failAt(at, name + std::string(" = ") + fmt(v) + " is beyond what the solvers can represent (1e-100..1e100); "
+                                                        "check the units");
+  }
+
+  void checkRepresentable() const {
+    for (const BodyDesc& b : scene_.bodies) {
+      checkSection({b.mark.file, b.mark.line, b.mark.key + ".section"}, b.E, b.A, b.I, b.rho, bodyLength(b.geometry));
+      for (const model::PointMassDesc& pm : b.pointMasses)
+        if (!representable(pm.mass)) failAt(pm.mark, "a mass of " + fmt(pm.mass) + " kg is beyond 1e-100..1e100");
+    }
+    for (const model::RigidBodyDesc& r : scene_.rigidBodies) {
+      const double values[] = {r.mass, ctx_.dim == 2 ? r.inertia : r.principalInertia[0], r.principalInertia[1],
+                               r.principalInertia[2]};
+      for (int k = 0; k < (ctx_.dim == 2 ? 2 : 4); ++k)
+        if (!representable(values[k]))
+          failAt(r.mark, "mass " + fmt(r.mass) + " and inertia must lie within 1e-100..1e100 (got " + fmt(values[k]) + ")");
+    }
+  }
+
+  // Body and rigid-body names become HDF5 group and series names and XDMF text: no '/' or ':'
+  // (OutputWriter refused them later without a line), not "." or ".." (issue 32 item 10).
+  void checkOutputNames() const {
+    auto check = [](const std::string& name, const SourceMark& mark) {
+      if (name == "." || name == ".." || name.find_first_of("/:") != std::string::npos)
+        failAt({mark.file, mark.line, mark.key + ".name"},
+               "'" + printable(name) + "' cannot name an output group: no '/' or ':', not '.' or '..'");
+    };
+    for (const BodyDesc& b : scene_.bodies) check(b.name, b.mark);
+    for (const model::RigidBodyDesc& r : scene_.rigidBodies) check(r.name, r.mark);
+  }
+
   // A catenary without sag_direction hangs along gravity (or -y / -z without gravity); that
   // direction must not be parallel to its chord.
   void checkCatenaryDefaults() const {
@@ -1317,11 +1476,60 @@ private:
 
 }  // namespace
 
+namespace {
+
+// The events of one YAML document: the line of its first value (0: the document is empty).
+class FirstValue : public YAML::EventHandler {
+public:
+  int line = 0;
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { note(m); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { note(m); }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    note(m);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    note(m);
+  }
+  void OnMapEnd() override {}
+
+private:
+  void note(const YAML::Mark& m) {
+    if (line == 0) line = m.line + 1;
+  }
+};
+
+// The line where a second YAML document of `text` has a value, 0 if it has none. Walked with a
+// Parser, two documents at most: yaml-cpp 0.7's LoadAll never ends on some malformed input (it
+// keeps producing empty documents; found by tests/fuzz).
+int secondDocumentLine(const std::string& text) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  FirstValue first, second;
+  if (!parser.HandleNextDocument(first) || !parser.HandleNextDocument(second)) return 0;
+  return second.line;
+}
+
+}  // namespace
+
+void requireModalScene(const model::SceneDescription& scene) {
+  // Modes of a constrained system need its static equilibrium first, and the static Newton of a
+  // mechanism starts singular (no stiffness for the rigid motion while the multipliers are 0):
+  // refused here, the same way for `analysis: modes` and `strand modes` (issue 32 item 6).
+  if (!scene.rigidBodies.empty() || !scene.joints.empty()) failAt(scene.analysisMark, kNoConstrainedModes);
+}
+
 model::SceneDescription parseScene(const std::string& yamlText, const std::string& fileNameForMessages) {
   const std::string& file = fileNameForMessages;
   YAML::Node root;
   try {
     root = YAML::Load(yamlText);
+    if (const int line = secondDocumentLine(yamlText))  // refused rather than ignored (issue 32 item 10)
+      throw InputError(file + ":" + std::to_string(line) +
+                       ": (document): a second YAML document ('---') is not read; a scene is one document");
   } catch (const YAML::Exception& e) {
     throw InputError(file + ":" + std::to_string(e.mark.line + 1) + ": (syntax): " + e.msg);
   }
@@ -1340,9 +1548,17 @@ model::SceneDescription readScene(const std::string& path) {
     const std::string why = isDir ? " (it is a directory)" : !fs::exists(path, ec) ? " (no such file)" : "";
     throw InputError(path + ":0: (file): cannot open scene file '" + path + "'" + why);
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseScene(text.str(), path);
+  // bounded: a device or a pipe is not a scene (/dev/zero read without end, issue 32 item 9)
+  if (!fs::is_regular_file(path, ec))
+    throw InputError(path + ":0: (file): not a regular file; a scene is a YAML text file");
+  const auto size = fs::file_size(path, ec);
+  if (ec || size > kMaxSceneBytes)
+    throw InputError(path + ":0: (file): " + std::to_string(size) + " bytes, more than a scene may have (" +
+                     std::to_string(kMaxSceneBytes >> 20) + " MB); put long polylines in a CSV file (geometry.file)");
+  std::string text(size, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(size));
+  text.resize(static_cast<size_t>(in.gcount()));
+  return parseScene(text, path);
 }
 
 }  // namespace strand::io

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 
+#include "CommittedFile.hpp"
 #include "Hdf5.hpp"
 
 namespace strand::io {
@@ -33,7 +34,9 @@ std::vector<T> table(const std::vector<std::vector<T>>& t, size_t n, T pad) {
 
 void writeHdf5(const std::string& path, const SweepInfo& info, const solvers::SweepResult& r) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  Hid file(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "cannot create file"), H5Fclose);
+  // one commit at the end (CommittedFile.hpp): a run killed while writing leaves no half file
+  Hid fapl(committedFileAccess(), H5Pclose);
+  Hid file(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "cannot create file"), H5Fclose);
   const hid_t f = file.get();
   const hsize_t P = r.parameter.size(), n = modeCount(r);
   writeAttribute(f, "strand_version", info.version);
@@ -41,7 +44,7 @@ void writeHdf5(const std::string& path, const SweepInfo& info, const solvers::Sw
   writeAttribute(f, "analysis", std::string("sweep"));
   writeAttribute(f, "parameter", r.parameterName);
   writeAttribute(f, "method", r.method);
-  writeAttribute(f, "status", std::string(r.failure.empty() ? "ok" : "failed"));
+  writeAttribute(f, "status", std::string(!r.failure.empty() ? "failed" : r.stopped ? "stopped" : "ok"));
   writeAttribute(f, "failure", r.failure);
   writeAttribute(f, "wall_time_s", r.seconds);
   writeAttribute(f, "points", static_cast<int>(P));
@@ -124,6 +127,7 @@ void writeHdf5(const std::string& path, const SweepInfo& info, const solvers::Sw
   ev.close("cannot close group '/sweep/events'");
   g.close("cannot close group '/sweep'");
   check(H5Fflush(f, H5F_SCOPE_GLOBAL), "cannot flush");
+  commit(f);
   file.close("cannot close");
 }
 

@@ -572,8 +572,10 @@ PetscErrorCode Dynamics::postStep(TS ts) {
     }
   }
   if (self->_stopCheck) {  // every rank must stop at the same step
-    int stop = self->_stopCheck() ? 1 : 0;
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, PetscObjectComm(reinterpret_cast<PetscObject>(ts))));
+    int stop = self->_stopCheck() ? 1 : 0, size;
+    const MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(ts));
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    if (size > 1) PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, comm));
     TSConvergedReason reason;
     PetscCall(TSGetConvergedReason(ts, &reason));
     if (stop && self->_blowUp == 0.0 && reason == TS_CONVERGED_ITERATING) {  // not over a finish or a failure

@@ -16,6 +16,10 @@ namespace {
 // BVSVEC is: 200-point sweep on 2,000 DOF, EPS 1.24 -> 1.16 s, PEP 2.61 -> 2.09 s; 20,000 DOF,
 // PEP 114 -> 91 ms per point (docs/performance.md). -modal_bv_type overrides it.
 constexpr int kPepMaxDofs = 5000;  // auto: TOAR up to this size, projection above (design section 4)
+constexpr double kShift = 1e-8;    // eps target sigma = -kShift |K|/|M| (ModalSolver::solve)
+// lambda below kRigid |K|/|M| is a rigid-body mode: a free body's come out at 1e-16..1e-22 of it
+// (round-off of K x for an exact null vector), elastic modes of practical meshes far above
+constexpr double kRigid = 1e-13;
 
 // Rotate a complex vector x = xr + i xi by a phase so that its real part carries the most energy
 // (a real mode shape for output and node finding).
@@ -120,10 +124,37 @@ PetscErrorCode ModalSolver::toFull(Vec freeVec, Vec* full) {
 PetscErrorCode ModalSolver::solve(Vec X, ModalResult* result) {
   PetscFunctionBeginUser;
   PetscCall(assemble(X));
-  switch (_method) {
-    case model::ModalMethod::Pep: PetscCall(solvePep(result)); break;
+  PetscInt nfree;
+  PetscCall(ISGetSize(_free, &nfree));
+  // A small negative target: shift-and-invert factors K - sigma M, which is definite also when K is
+  // singular (a free body's rigid-body modes, a mechanism), and the modes still come in ascending
+  // order (all lambda >= 0 are nearer sigma the smaller they are). sigma = -1e-8 |K|/|M|, far above
+  // LU's zero-pivot test (1e-14 relative). Measured (relative residuals): free-free beam, rigid modes
+  // 7e-9 and elastic 1e-11..1e-10 (with 1e-10: 4e-7 and 2e-8); the hanging cable 4e-11..3e-9
+  // (target 0: 2e-10..2e-8); the cantilever unchanged (1e-12..3e-10).
+  PetscReal nk, nm;
+  PetscCall(MatNorm(_Kf, NORM_INFINITY, &nk));
+  PetscCall(MatNorm(_Mf, NORM_INFINITY, &nm));
+  _lambdaScale = nm > 0.0 ? nk / nm : nk;
+  _shift = -kShift * _lambdaScale;
+  // The projection on m undamped modes is no reduction once m reaches the free coordinates, and its
+  // highest basis modes (the least accurate of a shift-and-invert solve about 0) spoil the reduced
+  // problem: residual 1e-7 against 1e-13 for pep (issue 32 item 11). Then solve the quadratic
+  // problem itself.
+  model::ModalMethod method = _method;
+  if (method == model::ModalMethod::Projected && _opt.projectionModes >= nfree) {
+    result->note = "modes.projection_modes " + std::to_string(_opt.projectionModes) + " >= the " +
+                   std::to_string(nfree) + " free coordinates: no reduction; solved with method pep (exact) instead";
+    method = model::ModalMethod::Pep;
+  }
+  const int count = static_cast<int>(std::min<PetscInt>(_opt.count, nfree));
+  if (count < _opt.count)
+    result->note = "modes.count " + std::to_string(_opt.count) + " > the " + std::to_string(nfree) +
+                   " free coordinates: " + std::to_string(count) + " modes";
+  switch (method) {
+    case model::ModalMethod::Pep: PetscCall(solvePep(result, count)); break;
     case model::ModalMethod::Projected: PetscCall(solveProjected(result)); break;
-    default: PetscCall(solveEps(_opt.count, result)); break;
+    default: PetscCall(solveEps(count, result)); break;
   }
   PetscFunctionReturn(0);
 }
@@ -139,7 +170,7 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
     PetscCall(EPSSetOptionsPrefix(_eps, "modal_"));
     PetscCall(EPSSetProblemType(_eps, EPS_GHEP));
     PetscCall(EPSSetDimensions(_eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
-    PetscCall(EPSSetTarget(_eps, 0.0));
+    PetscCall(EPSSetTarget(_eps, _shift));
     PetscCall(EPSSetWhichEigenpairs(_eps, EPS_TARGET_MAGNITUDE));
     PetscCall(EPSSetTolerances(_eps, 1e-12, 200));
     PetscCall(EPSGetST(_eps, &st));
@@ -148,6 +179,8 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
     PetscCall(EPSSetFromOptions(_eps));
   } else {
     PetscCall(EPSSetOperators(_eps, _Kf, _Mf));
+    PetscCall(EPSSetDimensions(_eps, nev, PETSC_DEFAULT, PETSC_DEFAULT));
+    PetscCall(EPSSetTarget(_eps, _shift));
   }
   if (_opt.warmStart && !_previous.empty())
     PetscCall(EPSSetInitialSpace(_eps, static_cast<PetscInt>(_previous.size()), _previous.data()));
@@ -168,20 +201,23 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
     PetscCall(MatCreateVecs(_Kf, &xr, nullptr));
     PetscScalar lambda;
     PetscCall(EPSGetEigenpair(_eps, k, &lambda, nullptr, xr, nullptr));
-    PetscReal nk, nr;  // residual check, independent of SLEPc's own estimate
+    PetscReal nk, nm, nr;  // residual check, independent of SLEPc's own estimate
     PetscCall(MatMult(_Kf, xr, kx));
     PetscCall(MatMult(_Mf, xr, mx));
     PetscCall(VecNorm(kx, NORM_2, &nk));
+    PetscCall(VecNorm(mx, NORM_2, &nm));
     PetscCall(VecAXPY(kx, -lambda, mx));
     PetscCall(VecNorm(kx, NORM_2, &nr));
-    pairs.push_back({PetscRealPart(lambda), xr, nr / nk});
+    // relative to |K x|, or for a rigid-body mode (K x ~ 0) to the shift's scale |sigma M x|
+    pairs.push_back({PetscRealPart(lambda), xr, nr / std::max(nk, std::fabs(_shift) * nm)});
   }
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.lambda < b.lambda; });
   result->method = "eps";
   for (const Pair& p : pairs) {
     Vec full;
     PetscCall(toFull(p.x, &full));
-    result->omega.push_back(std::sqrt(std::max(0.0, p.lambda)));
+    result->rigid.push_back(std::fabs(p.lambda) <= kRigid * _lambdaScale);
+    result->omega.push_back(result->rigid.back() ? 0.0 : std::sqrt(std::max(0.0, p.lambda)));
     result->shapes.push_back(full);
     result->relativeResidual.push_back(p.res);
     _previous.push_back(p.x);
@@ -192,7 +228,7 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
 }
 
 // Quadratic problem (lambda^2 M + lambda G + K_T) x = 0 by TOAR with shift-and-invert about 0.
-PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
+PetscErrorCode ModalSolver::solvePep(ModalResult* result, int count) {
   PetscFunctionBeginUser;
   MPI_Comm comm = _asm.dofs().comm();
   Mat A[3] = {_Kf, _Gf, _Mf};
@@ -208,7 +244,7 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
     // (pairs of equal magnitude) at 5 modes; 40 converges in one. For 10 modes 40 was 7 % faster
     // than 60 over a 200-point sweep, frequencies within 1.3e-8, backward errors < 1e-9 (measured,
     // docs/performance.md).
-    PetscCall(PEPSetDimensions(_pep, 2 * _opt.count, std::max(40, 3 * _opt.count + 10), PETSC_DEFAULT));
+    PetscCall(PEPSetDimensions(_pep, 2 * count, std::max(40, 3 * count + 10), PETSC_DEFAULT));
     // Scalar scaling of lambda (Fan, Lin, Van Dooren 2004): ||K|| >> omega^2 ||M|| for ANCF. Without it
     // the eigenvalues were accurate to only 1.6e-9 (mode 5 of verify_rotating_modes against eps,
     // Re(lambda)/|lambda| 5e-11); with it they agree to 1e-12 (1.6e-12) at about 10 % more time.
@@ -248,12 +284,12 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
     pairs.push_back({ki, xr, xi, err});
   }
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.omega < b.omega; });
-  if (static_cast<int>(pairs.size()) > _opt.count) {
-    for (size_t k = _opt.count; k < pairs.size(); ++k) {
+  if (static_cast<int>(pairs.size()) > count) {
+    for (size_t k = count; k < pairs.size(); ++k) {
       PetscCall(VecDestroy(&pairs[k].xr));
       PetscCall(VecDestroy(&pairs[k].xi));
     }
-    pairs.resize(_opt.count);
+    pairs.resize(count);
   }
   result->method = "pep";
   result->maxRealPart = maxRe;
@@ -262,6 +298,7 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result) {
     PetscCall(toFull(p.xr, &fr));
     PetscCall(toFull(p.xi, &fi));
     result->omega.push_back(p.omega);
+    result->rigid.push_back(false);
     result->shapes.push_back(fr);
     result->shapesImag.push_back(fi);
     result->relativeResidual.push_back(p.res);
@@ -351,6 +388,7 @@ PetscErrorCode ModalSolver::solveProjected(ModalResult* result) {
     PetscCall(toFull(xr, &fr));
     PetscCall(toFull(xi, &fi));
     result->omega.push_back(p.omega);
+    result->rigid.push_back(false);
     result->shapes.push_back(fr);
     result->shapesImag.push_back(fi);
     result->relativeResidual.push_back(std::sqrt(nr2 / nk2));
@@ -379,6 +417,7 @@ void destroyModes(ModalResult* result) {
   result->shapes.clear();
   result->shapesImag.clear();
   result->omega.clear();
+  result->rigid.clear();
   result->relativeResidual.clear();
 }
 

@@ -89,6 +89,7 @@ PetscErrorCode StaticSolver::solve(Vec X, const StepCallback& onStep, std::strin
   PetscReal increment = nominal, lambda = 0.0;
   int step = 0, cutbacks = 0;
   failure->clear();
+  _stopped = false;
   while (lambda < 1.0 - 1e-14) {
     _loadFactor = std::min(1.0, lambda + increment);
     PetscCall(SNESSolve(_snes, nullptr, X));
@@ -105,6 +106,14 @@ PetscErrorCode StaticSolver::solve(Vec X, const StepCallback& onStep, std::strin
       if (onStep) PetscCall(onStep(info, X));
       cutbacks = 0;
       increment = std::min(nominal, 2.0 * increment);
+      if (_stopCheck && lambda < 1.0 - 1e-14) {  // every rank stops after the same load step
+        int stop = _stopCheck() ? 1 : 0;
+        PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stop, 1, MPI_INT, MPI_MAX, _asm.dofs().comm()));
+        if (stop) {
+          _stopped = true;
+          break;
+        }
+      }
       continue;
     }
     // failed: restore the last accepted state and halve the increment

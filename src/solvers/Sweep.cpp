@@ -165,7 +165,7 @@ PetscErrorCode refineEvents(MPI_Comm comm, const model::SceneDescription& scene,
 }  // namespace
 
 PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, SweepResult* out,
-                        const SweepProgress& progress) {
+                        const SweepProgress& progress, const std::function<bool()>& stop) {
   PetscFunctionBeginUser;
   const model::SweepDesc& sw = scene.sweep;
   const bool speedSweep = sw.parameter == model::SweepParameter::Gamma || sw.parameter == model::SweepParameter::Omega;
@@ -276,6 +276,14 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
     stored.push_back(here);
     destroyModes(&r);
     if (progress) progress(i, *out);
+    if (stop && i + 1 < sw.points) {  // every rank ends after the same point
+      int halt = stop() ? 1 : 0;
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &halt, 1, MPI_INT, MPI_MAX, comm));
+      if (halt) {
+        out->stopped = true;
+        break;
+      }
+    }
   }
   const int count = out->omega.empty() ? 0 : static_cast<int>(out->omega[0].size());
   bool uniform = true;

@@ -11,8 +11,16 @@
 
 namespace strand {
 
-// 4: a dynamic run stopped at its wall-time limit (-wall_time) after writing a checkpoint.
-enum ExitCode : int { kExitSuccess = 0, kExitInternal = 1, kExitBadInput = 2, kExitDiverged = 3, kExitWallTime = 4 };
+// 4: a run stopped at its wall-time limit (-wall_time) or by a stop signal (SIGTERM, SIGINT,
+// SIGUSR1) after the current step, with a checkpoint (dynamics).
+enum ExitCode : int {
+  kExitSuccess = 0,
+  kExitInternal = 1,
+  kExitBadInput = 2,
+  kExitDiverged = 3,
+  kExitWallTime = 4,
+  kExitStopped = 4
+};
 
 class InputError : public std::runtime_error {
 public:

@@ -55,6 +55,10 @@ public:
   // rate) to t_end. onStep runs after the initial state and every accepted step. On failure,
   // *failure says why, when and what to try; the run returns 0 (no PETSc error).
   PetscErrorCode run(const StepCallback& onStep, std::string* failure);
+  // A check run after every step; true on any rank ends the run after that step (no failure;
+  // stoppedByRequest() is then true): a stop signal of a batch job.
+  void setStopCheck(std::function<bool()> check) { _stopCheck = std::move(check); }
+  bool stoppedByRequest() const { return _stopped; }
   const std::string& schemeName() const { return _schemeName; }
   // The post-step check (public for the TS callback): stops the run on a non-finite state or a tip
   // beyond kDeformationLimit L.
@@ -99,6 +103,9 @@ private:
   bool _haveLast = false;
   int _lastIterations = 0;
   std::string _stop;  // why the monitor stopped the run
+  std::function<bool()> _stopCheck;
+  bool _stopped = false;
+  bool stopRequested();  // _stopCheck agreed over the ranks (every rank integrates the same system)
 };
 
 }  // namespace strand::ffr

@@ -8,6 +8,7 @@
 #pragma once
 #include <mpi.h>
 
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
@@ -25,7 +26,9 @@ struct CheckpointData {
 void writeCheckpoint(MPI_Comm comm, const std::string& path, const CheckpointData& data);
 
 // Reads a checkpoint. Collective: scalars and names reach every rank, vectors rank 0 only.
-// Throws InputError naming the file and the reason (missing, not a checkpoint, unreadable).
-CheckpointData readCheckpoint(MPI_Comm comm, const std::string& path);
+// Throws InputError naming the file and the reason (missing, not a checkpoint, unreadable, an
+// attribute that is not one number or string, a dataset that is not 1-D numbers or has more than
+// maxValues entries: the file is input, nothing is read before its type and size are checked).
+CheckpointData readCheckpoint(MPI_Comm comm, const std::string& path, size_t maxValues);
 
 }  // namespace strand::io

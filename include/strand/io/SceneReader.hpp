@@ -23,4 +23,9 @@ model::SceneDescription readScene(const std::string& path);
 // Throws strand::InputError.
 model::SceneDescription parseScene(const std::string& yamlText, const std::string& fileNameForMessages);
 
+// Throws InputError (at the scene's `analysis` key) when the scene cannot be analysed for modes:
+// rigid bodies and joints. The reader calls it for analysis: modes, `strand modes` for any scene,
+// so both refuse the same way.
+void requireModalScene(const model::SceneDescription& scene);
+
 }  // namespace strand::io

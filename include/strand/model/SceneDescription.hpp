@@ -281,7 +281,9 @@ struct HubBeamDesc {
 
 struct SceneDescription {
   std::string file;  // path of the scene file
+  std::vector<std::string> inputFiles;  // the other files it reads (polyline CSV), as opened
   Analysis analysis = Analysis::Static;
+  SourceMark analysisMark;  // where `analysis` is given
   int dimension = 3;
   std::vector<BodyDesc> bodies;
   std::vector<SupportDesc> supports;

@@ -3,7 +3,9 @@
 // Linearized equations of motion in the (rotating) frame (design section 4; seed 003 Eq. 74):
 //   M x'' + G x' + K_T x = 0,   K_T = K(u*) - Omega^2 M_P  (the Jacobian of the static residual),
 // on the free DOFs (supports removed with MatCreateSubMatrix). Methods:
-//   eps        generalized Hermitian K_T phi = omega^2 M phi, shift-and-invert about 0 (G ignored);
+//   eps        generalized Hermitian K_T phi = omega^2 M phi, shift-and-invert about a small negative
+//              target (G ignored): a free body's rigid-body modes come first, at 0 Hz, then the
+//              elastic ones (issue 32 item 7);
 //   pep        quadratic (lambda^2 M + lambda G + K_T) x = 0 with TOAR, shift-and-invert about 0;
 //              lambda = +- i omega for a stable gyroscopic system;
 //   projected  the same quadratic problem on the span of the first m eps modes Phi:
@@ -24,12 +26,14 @@
 namespace strand::solvers {
 
 struct ModalResult {
-  std::vector<double> omega;  // angular frequencies [rad/s], ascending
+  std::vector<double> omega;  // angular frequencies [rad/s], ascending; 0 for rigid-body modes
+  std::vector<bool> rigid;    // a rigid-body mode (lambda at round-off of |K|/|M|): free bodies, mechanisms
   std::vector<Vec> shapes;    // full-length mode shapes (zero at supports), caller destroys
   std::vector<Vec> shapesImag;  // imaginary parts (quadratic problem with Coriolis), else empty
   std::vector<double> relativeResidual;  // eps: ||K phi - omega^2 M phi|| / ||K phi||; pep: backward error
   double maxRealPart = 0.0;   // quadratic problems: max |Re lambda| / |lambda| (0 for a gyroscopic system)
   std::string method;         // "eps", "pep" or "projected"
+  std::string note;           // what the solver changed from the options (method, count), or ""
 };
 
 struct ModalOptions {
@@ -58,7 +62,7 @@ public:
 private:
   PetscErrorCode assemble(Vec X);
   PetscErrorCode solveEps(int nev, ModalResult* result);
-  PetscErrorCode solvePep(ModalResult* result);
+  PetscErrorCode solvePep(ModalResult* result, int count);
   PetscErrorCode solveProjected(ModalResult* result);
   PetscErrorCode toFull(Vec freeVec, Vec* full);
 
@@ -67,6 +71,7 @@ private:
   model::ModalMethod _method;
   Mat _K = nullptr, _M = nullptr, _G = nullptr, _Kf = nullptr, _Mf = nullptr, _Gf = nullptr;
   IS _free = nullptr;
+  double _shift = 0.0, _lambdaScale = 0.0;  // eps target (negative, small) and |K|/|M| of the last solve
   EPS _eps = nullptr;
   PEP _pep = nullptr;
   std::vector<Vec> _previous;  // eigenvectors of the last solve (free DOFs), for warm starts

@@ -38,6 +38,10 @@ public:
   // X then holds the last converged state.
   PetscErrorCode solve(Vec X, const StepCallback& onStep, std::string* failure);
   SNES snes() const { return _snes; }
+  // A check run after every accepted load step on every rank; when it returns true on any rank the
+  // solve stops there (no failure; stoppedByRequest() is then true): a stop signal of a batch job.
+  void setStopCheck(std::function<bool()> check) { _stopCheck = std::move(check); }
+  bool stoppedByRequest() const { return _stopped; }
 
 private:
   static constexpr int kMaxCutbacks = 8;
@@ -50,6 +54,8 @@ private:
   SNES _snes = nullptr;
   Mat _J = nullptr;
   Vec _R = nullptr;
+  std::function<bool()> _stopCheck;
+  bool _stopped = false;
 };
 
 // Direct-solver defaults used by every Strand solver, set only where the user gave no option: the

@@ -31,11 +31,14 @@ struct SweepResult {
   double maxRealPart = 0.0;                      // quadratic problems: max |Re lambda| / |lambda|
   double seconds = 0.0;                          // wall time of the sweep
   std::string failure;                           // non-empty: the steady state failed at a point
+  bool stopped = false;                          // the stop check ended the sweep after a point
 };
 
 using SweepProgress = std::function<void(int point, const SweepResult&)>;
 
+// `stop`, if given, is asked after every point on every rank; when it returns true on any rank the
+// sweep ends there (result->stopped; tracking and events over the points done).
 PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, SweepResult* result,
-                        const SweepProgress& progress = nullptr);
+                        const SweepProgress& progress = nullptr, const std::function<bool()>& stop = nullptr);
 
 }  // namespace strand::solvers
