@@ -14,14 +14,15 @@
 #include <sstream>
 
 #include "strand/core/Error.hpp"
+#include "strand/elements/ElementRegistry.hpp"
 
 namespace strand::io {
 
 namespace {
 
-constexpr double kCoordinatesPerNode = 12.0;      // up to 4 blocks of 3 (any element kind)
-constexpr double kBytesPerElement = 16e3;         // statics, dynamics (see the header)
+constexpr double kBytesPerElement = 16e3;         // statics, dynamics of a 3D cable (see the header)
 constexpr double kModalBytesPerElement = 24e3;    // modes, sweeps, before the mode shapes
+constexpr double kCableElementCoordinates = 12.0;  // the 3D cable's, which the per-element bytes are for
 constexpr double kBytesPerProcess = 100e6;        // PETSc, MPI, HDF5, the executable
 constexpr double kReplicated = 0.25;              // share of the per-element cost every rank holds
 constexpr double kPetscIndexMax = 2147483647.0;   // Debian's PETSc has 32-bit indices
@@ -83,12 +84,17 @@ ResourceEstimate estimateResources(const model::SceneDescription& scene, bool mo
   const double perElement = modal ? kModalBytesPerElement : kBytesPerElement;
   const double samples = scene.output.samplesPerElement;
   // mode shapes are held as frames (centerline samples and nodal coordinates) until written
-  const double shapes = modal ? scene.modes.count * (samples * 3.0 + kCoordinatesPerNode) * sizeof(double) : 0.0;
+  const double shapes = modal ? scene.modes.count * samples * 3.0 * sizeof(double) : 0.0;
   double most = -1.0;
   for (const model::BodyDesc& b : scene.bodies) {
-    const double elements = b.elements;
-    e.coordinates += (elements + 1.0) * kCoordinatesPerNode;
-    const double bytes = elements * ((perElement + shapes) * share + samples * 3.0 * sizeof(double));
+    const elements::KindInfo& kind = elements::kindInfo(b.kind);
+    const double elements = b.elements, nodeCoordinates = 3.0 * kind.blocksPerNode;  // blocks of 3 (BAIJ bs = 3)
+    e.coordinates += (elements + 1.0) * nodeCoordinates;
+    // element matrices and their share of the sparse matrices grow with the square of the element's size
+    const double grow = std::max(1.0, std::pow(2.0 * nodeCoordinates / kCableElementCoordinates, 2));
+    const double bytes =
+        elements * ((perElement * grow + shapes + (modal ? nodeCoordinates * scene.modes.count * sizeof(double) : 0.0)) * share +
+                    samples * 3.0 * sizeof(double));
     e.bytes += bytes + b.geometry.points.size() * sizeof(model::Vec3) * ranksOnHost;
     if (bytes > most) {
       most = bytes;

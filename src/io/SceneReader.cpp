@@ -742,7 +742,7 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
   const Field element = f.child("element");
   const std::string kindName = element.text();
   body.kind = elements::findKind(kindName);
-  if (body.kind < 0) element.fail("unknown element type '" + kindName + "'; allowed: " + join(elements::kindNames()));
+  if (body.kind < 0) element.fail("unknown element type '" + printable(kindName) + "'; allowed: " + join(elements::kindNames()));
   const elements::KindInfo& kind = elements::kindInfo(body.kind);
   if (kind.dim != ctx.dim)
     element.fail(std::string(kind.name) + " needs dimension: " + std::to_string(kind.dim) +
@@ -894,7 +894,7 @@ private:
     for (const HubBeamKey& k : kHubBeamBeamKeys) beamKeys.emplace_back(k.name);
     beam.expectMap(beamKeys);
     for (const HubBeamKey& k : kHubBeamBeamKeys) h.*k.field = requirePositive(beam.child(k.name));
-    checkSection(beam.mark(), h.E, h.A, h.I, h.rho, h.length);
+    checkSection(beam.mark(), {h.E * h.A, h.E * h.I, h.rho * h.A}, h.length);
 
     readHubBeamHub(f.child("hub"), h);
     if (const Field c = f.child("coupling"); c.present()) h.coupling = pick(c, "coupling", kHubBeamCouplings).value;
@@ -1415,12 +1415,12 @@ private:
   // outside any physical scene and far inside double precision, so that their squares stay finite.
   static bool representable(double v) { return std::isfinite(v) && std::fabs(v) >= 1e-100 && std::fabs(v) <= 1e100; }
 
-  static void checkSection(const SourceMark& at, double E, double A, double I, double rho, double length) {
-    const std::pair<const char*, double> products[] = {{"E A", E * A},
-                                                       {"E I", E * I},
-                                                       {"rho A", rho * A},
+  static void checkSection(const SourceMark& at, const elements::BeamProperties& p, double length) {
+    const std::pair<const char*, double> products[] = {{"E A", p.EA},
+                                                       {"E I", p.EI},
+                                                       {"rho A", p.rhoA},
                                                        {"the length", length},
-                                                       {"rho A L^4 / (E I)", rho * A * std::pow(length, 4) / (E * I)}};
+                                                       {"rho A L^4 / (E I)", p.rhoA * std::pow(length, 4) / p.EI}};
     for (const auto& [name, v] : products)
       if (!representable(v))
         failAt(at, name + std::string(" = ") + fmt(v) + " is beyond what the solvers can represent (1e-100..1e100); "
@@ -1429,7 +1429,8 @@ private:
 
   void checkRepresentable() const {
     for (const BodyDesc& b : scene_.bodies) {
-      checkSection({b.mark.file, b.mark.line, b.mark.key + ".section"}, b.E, b.A, b.I, b.rho, bodyLength(b.geometry));
+      checkSection({b.mark.file, b.mark.line, b.mark.key + ".section"}, elements::kindInfo(b.kind).properties(b.section),
+                   bodyLength(b.geometry));
       for (const model::PointMassDesc& pm : b.pointMasses)
         if (!representable(pm.mass)) failAt(pm.mark, "a mass of " + fmt(pm.mass) + " kg is beyond 1e-100..1e100");
     }

@@ -240,7 +240,7 @@ TEST(Reliability, OversizedScenesAreRefusedBeforeAnythingIsAllocated) {
                               "  hub: {angle: {function: spin_up, omega: 4, duration: 15}}\n"
                               "  discretization: {method: fem, elements: 20000000}\ndynamics: {dt: 1e-3, t_end: 1}\n");
   const std::pair<const char*, const char*> cases[] = {
-      {"huge", "huge.yaml:4: bodies[0].elements: the scene has up to 25769803776 coordinates"},
+      {"huge", "huge.yaml:4: bodies[0].elements: the scene has up to 12884901888 coordinates"},
       {"samples", "samples.yaml:4: bodies[0].elements: 8 elements x output.samples_per_element 100000000"},
       {"endless", "endless.yaml:7: bodies[0].geometry.file: '/dev/zero' is not a regular file"},
       {"hub", "hub.yaml:2: hub_beam.discretization: this run needs about"},

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "strand/core/Error.hpp"
+#include "strand/elements/ElementRegistry.hpp"
 #include "strand/io/ResourceEstimate.hpp"
 #include "support/Scenes.hpp"
 
@@ -36,7 +37,13 @@ model::SceneDescription cable(int elements) {
 
 TEST(ResourceEstimate, GrowsWithTheModelAndCoversTheMeasuredRuns) {
   const auto small = estimateResources(cable(10), false, 1, 1), big = estimateResources(cable(100000), false, 1, 1);
-  EXPECT_EQ(small.coordinates, 11 * 12.0);
+  EXPECT_EQ(small.coordinates, 11 * 6.0);  // two blocks of 3 per node
+  // a kind with more blocks per node: AleBeamShaft3d has r, r' and (p, theta) per node
+  auto shaft = cable(10);
+  shaft.bodies[0].kind = elements::findKind("AleBeamShaft3d");
+  const auto s = estimateResources(shaft, false, 1, 1);
+  EXPECT_EQ(s.coordinates, 11 * 9.0);
+  EXPECT_GT(s.bytes - 1e8, 2.0 * (small.bytes - 1e8));  // (18 / 12)^2 = 2.25 times the per-element bytes
   EXPECT_LT(small.bytes, 2e8);
   // measured: 489 MB (generalized-alpha) and 753 MB (BDF) peak at 1e5 elements of a 3D cable
   EXPECT_GT(big.bytes, 2 * 753e6);
@@ -52,7 +59,7 @@ TEST(ResourceEstimate, GrowsWithTheModelAndCoversTheMeasuredRuns) {
 TEST(ResourceEstimate, RefusesWhatCannotBeRepresentedOrDoesNotFit) {
   EXPECT_EQ(refusal(cable(1000), false, 1e12), "");
   std::string why = refusal(cable(2147483647), false, 1e30);
-  EXPECT_EQ(why.rfind("scene.yaml:4: bodies[0].elements: the scene has up to 25769803776 coordinates", 0), 0u) << why;
+  EXPECT_EQ(why.rfind("scene.yaml:4: bodies[0].elements: the scene has up to 12884901888 coordinates", 0), 0u) << why;
   why = refusal(cable(1000000), false, 1e9);
   EXPECT_EQ(why.rfind("scene.yaml:4: bodies[0].elements: this run needs about ", 0), 0u) << why;
   EXPECT_NE(why.find("more than the 1 GB of -max_memory"), std::string::npos) << why;
