@@ -412,6 +412,24 @@ PetscErrorCode Assembler::addInertia(Vec X, Vec V, Vec A, Vec R) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::inertiaJacobian(Vec X, Vec V, Vec A, PetscReal shiftV, PetscReal shiftA, Mat J) {
+  PetscFunctionBeginUser;
+  PetscCall(MatZeroEntries(J));
+  if (hasVariableMass()) {
+    LocalRead x, v, a;
+    PetscCall(beginLocal(X, _xWork, &x));
+    PetscCall(beginLocal(V, _vWork, &v));
+    PetscCall(beginLocal(A, _rWork, &a));
+    for (const auto& f : _families) PetscCall(f->inertiaJacobian(x.a, v.a, a.a, shiftV, shiftA, J, _fixedLocal));
+    PetscCall(endLocal(&a));
+    PetscCall(endLocal(&v));
+    PetscCall(endLocal(&x));
+  }
+  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::massMatrixAt(Vec X, Mat M, bool maskSupports) {
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(M));

@@ -466,7 +466,8 @@ const Choice<model::ModalMethod> kModalMethods[] = {{"auto", model::ModalMethod:
 const Choice<model::SweepParameter> kSweepParameters[] = {{"gamma", model::SweepParameter::Gamma},
                                                           {"omega", model::SweepParameter::Omega},
                                                           {"mass_ratio", model::SweepParameter::MassRatio},
-                                                          {"mass_location", model::SweepParameter::MassLocation}};
+                                                          {"mass_location", model::SweepParameter::MassLocation},
+                                                          {"transport_speed", model::SweepParameter::TransportSpeed}};
 
 const Choice<bool> kStressFree[] = {{"straight", false}, {"initial", true}};
 
@@ -833,14 +834,18 @@ public:
     for (size_t b = 0; b < scene_.bodies.size(); ++b) {  // kinds whose mass changes with their coordinates
       const elements::KindInfo& kind = elements::kindInfo(scene_.bodies[b].kind);
       if (kind.constantMass) continue;
-      if (scene_.analysis == model::Analysis::Modes)
-        failAt(scene_.bodies[b].mark, std::string("modal analysis of ") + kind.name + " bodies is not built yet");
+      if (scene_.rotation.present)
+        root.child("rotation").fail(std::string("a rotating frame with ") + kind.name + " bodies is not built");
       if (scene_.analysis == model::Analysis::Dynamic && model::isFirstOrder(scene_.dynamics.integrator))
         root.child("dynamics").child("integrator").fail(
             std::string(kind.name) + " (body '" + scene_.bodies[b].name + "') has a mass that changes with its material "
             "coordinates: use generalized_alpha, newmark or hht");
-      if (scene_.analysis != model::Analysis::Dynamic && (scene_.bodies[b].hasMaterialMotion || scene_.bodies[b].hasPayout))
-        failAt(scene_.bodies[b].mark, "material_motion and payout are motions in time: only with analysis: dynamic");
+      // modes linearize about the steady flow at material_motion's rate at t = 0 (ModalSolver.hpp)
+      if (scene_.analysis == model::Analysis::Static && scene_.bodies[b].hasMaterialMotion)
+        failAt(scene_.bodies[b].mark, "material_motion is a motion in time: with analysis: dynamic, or modes about "
+                                      "the steady flow");
+      if (scene_.analysis != model::Analysis::Dynamic && scene_.bodies[b].hasPayout)
+        failAt(scene_.bodies[b].mark, "payout is a motion in time: only with analysis: dynamic");
     }
     if (scene_.analysis == model::Analysis::Dynamic) {
       if (!root.child("dynamics").present())
@@ -1098,6 +1103,11 @@ private:
     }
     if ((s.parameter == model::SweepParameter::Gamma || s.parameter == model::SweepParameter::Omega) && !scene_.rotation.present)
       f.fail("an angular-speed sweep needs a 'rotation' section (its axis and hub)");
+    if (s.parameter == model::SweepParameter::TransportSpeed) {
+      bool ale = false;
+      for (const BodyDesc& b : scene_.bodies) ale = ale || !elements::kindInfo(b.kind).constantMass;
+      if (!ale) f.fail("a transport_speed sweep moves the material of ALE bodies (" + aleKindNames() + "); there are none");
+    }
   }
 
   void readDiscretization(const Field& f) {
@@ -1521,6 +1531,10 @@ void requireModalScene(const model::SceneDescription& scene) {
   // mechanism starts singular (no stiffness for the rigid motion while the multipliers are 0):
   // refused here, the same way for `analysis: modes` and `strand modes` (issue 32 item 6).
   if (!scene.rigidBodies.empty() || !scene.joints.empty()) failAt(scene.analysisMark, kNoConstrainedModes);
+  // modes linearize about a steady state: a material flow at a constant rate, not a payout
+  for (const model::BodyDesc& b : scene.bodies)
+    if (b.hasPayout) failAt(b.mark, "payout changes the body's length: there are no modes about it (use material_motion "
+                                    "for a steady flow)");
 }
 
 model::SceneDescription parseScene(const std::string& yamlText, const std::string& fileNameForMessages) {

@@ -62,8 +62,9 @@ ModalOptions modalOptions(const model::ModesDesc& modes) {
 ModalSolver::ModalSolver(assembly::Assembler& assembler, const ModalOptions& options)
     : _asm(assembler), _opt(options), _method(options.method) {
   if (_opt.projectionModes <= 0) _opt.projectionModes = std::max(2 * _opt.count, _opt.count + 10);
+  _transport = assembler.hasVariableMass() && materialFlows(assembler);
   if (_method == model::ModalMethod::Auto) {
-    if (!_opt.coriolis) _method = model::ModalMethod::Eps;
+    if (!_opt.coriolis && !_transport) _method = model::ModalMethod::Eps;
     else _method = assembler.model().numDofs() <= kPepMaxDofs ? model::ModalMethod::Pep : model::ModalMethod::Projected;
   }
 }
@@ -88,8 +89,9 @@ PetscErrorCode ModalSolver::assemble(Vec X) {
     PetscCall(_asm.freeDofs(&_free));
   }
   PetscCall(_asm.staticJacobian(X, 1.0, _K));  // K_T = K - Omega^2 M_P
-  PetscCall(_asm.massMatrix(_M));
-  if (needG) {
+  PetscCall(_asm.massMatrixAt(X, _M));
+  if (_asm.hasVariableMass()) PetscCall(addSteadyFlowInertia(X, needG));
+  else if (needG) {
     if (_opt.coriolis) PetscCall(_asm.gyroscopicMatrix(_G));
     else {
       PetscCall(MatZeroEntries(_G));
@@ -101,6 +103,45 @@ PetscErrorCode ModalSolver::assemble(Vec X) {
   PetscCall(MatCreateSubMatrix(_M, _free, _free, reuse, &_Mf));
   if (needG) PetscCall(MatCreateSubMatrix(_G, _free, _free, reuse, &_Gf));
   PetscFunctionReturn(0);
+}
+
+// Kinds whose mass depends on the coordinates (the ALE kinds) carry material that may flow through
+// the nodes at the prescribed rates pdot (material_motion). About that steady flow (positions at
+// rest, pdot constant, so every acceleration zero) the inertial force F(q, qdot, qddot) linearizes
+// to M(q) x'' + dF/dqdot x' + dF/dq x: the transport adds the gyroscopic matrix G = dF/dqdot
+// (2 rho A v w_xt in Wickert & Mote's Eq. 54) and to the stiffness dF/dq (-rho A v^2 w_xx).
+// The inertia of a straight span in steady flow is zero, so its static state is the steady one;
+// a curved span's steady state would need F(q, qdot0, 0) in the static residual (not built).
+PetscErrorCode ModalSolver::addSteadyFlowInertia(Vec X, bool needG) {
+  PetscFunctionBeginUser;
+  Vec V0, A0;
+  Mat Kq;
+  PetscCall(_asm.dofs().createVector(&V0));
+  PetscCall(VecDuplicate(V0, &A0));
+  PetscCall(VecSet(V0, 0.0));
+  PetscCall(VecSet(A0, 0.0));
+  PetscCall(_asm.prescribedMotion(0.0, nullptr, V0, nullptr));  // the material rates pdot
+  PetscCall(_asm.dofs().createMatrix(&Kq, "modal_", MATAIJ));
+  PetscCall(_asm.inertiaJacobian(X, V0, A0, 0.0, 0.0, Kq));
+  PetscCall(MatAXPY(_K, 1.0, Kq, SUBSET_NONZERO_PATTERN));
+  if (needG) {
+    PetscCall(_asm.inertiaJacobian(X, V0, A0, 1.0, 0.0, _G));
+    PetscCall(MatAXPY(_G, -1.0, Kq, SAME_NONZERO_PATTERN));
+  }
+  PetscCall(MatDestroy(&Kq));
+  PetscCall(VecDestroy(&V0));
+  PetscCall(VecDestroy(&A0));
+  PetscFunctionReturn(0);
+}
+
+// Whether any prescribed rate is nonzero at t = 0 in a model with ALE kinds (the material flows).
+bool ModalSolver::materialFlows(assembly::Assembler& assembler) {
+  Vec V0;
+  PetscReal n = 0.0;
+  if (assembler.dofs().createVector(&V0)) return true;
+  if (!VecSet(V0, 0.0) && !assembler.prescribedMotion(0.0, nullptr, V0, nullptr)) VecNorm(V0, NORM_INFINITY, &n);
+  VecDestroy(&V0);
+  return n > 0.0;
 }
 
 PetscErrorCode ModalSolver::toFull(Vec freeVec, Vec* full) {
@@ -239,7 +280,8 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result, int count) {
     PetscCall(PEPSetType(_pep, PEPTOAR));
     // G = 0 (Coriolis off, for comparison with eps): TOAR with the gyroscopic type stalls (200
     // iterations, one pair, measured); the general type converges
-    PetscCall(PEPSetProblemType(_pep, _opt.coriolis ? PEP_GYROSCOPIC : PEP_GENERAL));
+    // (the transport of ALE kinds: G is skew only up to the momentum flux through free ends)
+    PetscCall(PEPSetProblemType(_pep, _opt.coriolis && !_transport ? PEP_GYROSCOPIC : PEP_GENERAL));
     // ncv: SLEPc's default (2 nev) needed 67 restarts with Coriolis and did not converge without it
     // (pairs of equal magnitude) at 5 modes; 40 converges in one. For 10 modes 40 was 7 % faster
     // than 60 over a 200-point sweep, frequencies within 1.3e-8, backward errors < 1e-9 (measured,

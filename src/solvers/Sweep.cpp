@@ -17,6 +17,7 @@ const char* parameterName(model::SweepParameter p) {
     case model::SweepParameter::Gamma: return "gamma";
     case model::SweepParameter::Omega: return "omega";
     case model::SweepParameter::MassRatio: return "mass_ratio";
+    case model::SweepParameter::TransportSpeed: return "transport_speed";
     default: return "mass_location";
   }
 }
@@ -185,7 +186,15 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
     const double p = sw.from + (sw.to - sw.from) * i / (sw.points - 1);
     if (!problem || !speedSweep) {
       model::SceneDescription sc = scene;
-      if (!speedSweep) {
+      if (sw.parameter == model::SweepParameter::TransportSpeed) {
+        for (model::BodyDesc& b : sc.bodies)
+          if (!elements::kindInfo(b.kind).constantMass) {
+            b.hasMaterialMotion = true;
+            b.materialMotion = model::TimeFunction{};
+            b.materialMotion.kind = model::TimeFunction::Kind::Linear;
+            b.materialMotion.rate = -p / b.initialStretch;
+          }
+      } else if (!speedSweep) {
         model::PointMassDesc& pm = sc.bodies[0].pointMasses[sw.mass];
         const model::BodyDesc& b = sc.bodies[0];
         if (sw.parameter == model::SweepParameter::MassRatio)
@@ -204,7 +213,7 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
       modal = std::make_unique<ModalSolver>(problem->assembler(), opt);
       if (!Mmac) {
         PetscCall(problem->dofs().createMatrix(&Mmac, "sweep_", MATAIJ));
-        PetscCall(problem->assembler().massMatrix(Mmac));
+        PetscCall(problem->assembler().massMatrixAt(X, Mmac));  // with the ALE kinds' mass
       }
     }
     const double T = problem->model().scales().time();

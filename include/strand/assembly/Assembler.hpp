@@ -89,6 +89,10 @@ public:
   // included). hasVariableMass() tells whether the model has such kinds.
   bool hasVariableMass() const { return !_model.constantMass(); }
   PetscErrorCode addInertia(Vec X, Vec V, Vec A, Vec R);
+  // Its derivatives alone: J = shiftA dF/dA + shiftV dF/dV + dF/dX of the variable-mass kinds at
+  // (X, V, A) (supported rows and columns left out, no unit diagonal): the linearized modes about
+  // a steady material flow (solvers/ModalSolver.hpp).
+  PetscErrorCode inertiaJacobian(Vec X, Vec V, Vec A, PetscReal shiftV, PetscReal shiftA, Mat J);
   // The mass at X: massMatrix() plus M(X) of the variable-mass kinds (the consistent start).
   PetscErrorCode massMatrixAt(Vec X, Mat M, bool maskSupports = true);
   // 1/2 V^T M(X) V of the variable-mass kinds (all ranks; 0 without them).

@@ -201,7 +201,9 @@ struct ModesDesc {
   bool warmStart = false;  // sweeps: start eps from the previous eigenvectors (can skip a mode, docs/performance.md)
 };
 
-enum class SweepParameter { Gamma, Omega, MassRatio, MassLocation };
+// TransportSpeed: the speed v [m/s] of the material through every ALE body's nodes (each body's
+// material_motion becomes linear with rate -v / initial_stretch: material flows from node 0 on).
+enum class SweepParameter { Gamma, Omega, MassRatio, MassLocation, TransportSpeed };
 struct SweepDesc {
   bool present = false;
   SweepParameter parameter = SweepParameter::Gamma;

@@ -65,10 +65,13 @@ private:
   PetscErrorCode solvePep(ModalResult* result, int count);
   PetscErrorCode solveProjected(ModalResult* result);
   PetscErrorCode toFull(Vec freeVec, Vec* full);
+  PetscErrorCode addSteadyFlowInertia(Vec X, bool needG);
+  static bool materialFlows(assembly::Assembler& assembler);
 
   assembly::Assembler& _asm;
   ModalOptions _opt;
   model::ModalMethod _method;
+  bool _transport = false;  // ALE kinds with material flowing: G from the transport (quadratic problem)
   Mat _K = nullptr, _M = nullptr, _G = nullptr, _Kf = nullptr, _Mf = nullptr, _Gf = nullptr;
   IS _free = nullptr;
   double _shift = 0.0, _lambdaScale = 0.0;  // eps target (negative, small) and |K|/|M| of the last solve
