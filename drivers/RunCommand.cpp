@@ -350,6 +350,12 @@ private:
         solvers::destroyModes(&r);
         return kExitDiverged;
       }
+      if (solver.transport()) {
+        double factor = 0.0;
+        const std::string e = guardSolve(_comm, [&] { return solver.divergenceFactor(&factor); });
+        if (e.empty()) reportCriticalSpeed(factor);
+        else say("note: the divergence speed could not be computed: " + e);
+      }
     }
     const double T = _problem.model().scales().time();
     std::vector<double> hz;
@@ -378,6 +384,23 @@ private:
     VecDestroy(&Y);
     solvers::destroyModes(&r);
     return kExitSuccess;
+  }
+
+  // ALE bodies whose material flows: the transport speed at which the steady flow diverges, from
+  // the first such body's speed |pdot| lambda (material rate times its initial stretch) and the
+  // factor on the rates (ModalSolver::divergenceFactor).
+  void reportCriticalSpeed(double factor) {
+    double speed = 0.0;
+    for (const model::BodyDesc& b : _scene.bodies)
+      if (b.hasMaterialMotion && speed == 0.0) speed = std::fabs(b.materialMotion.at(0.0).df) * b.initialStretch;
+    _writer->setAttribute("transport_speed", speed);
+    if (std::isinf(factor)) {
+      say("transport speed " + fmt("%.6g m/s", speed) + "; the steady flow does not diverge at any speed");
+      return;
+    }
+    say("transport speed " + fmt("%.6g m/s", speed) + "; critical (divergence) speed " + fmt("%.6g m/s", factor * speed) +
+        " (" + fmt("%.4g", factor) + " times the current): the lowest frequency falls to zero there");
+    _writer->setAttribute("critical_speed", factor * speed);
   }
 
   void summary(Vec X) {

@@ -3,6 +3,7 @@
 #include <petscsys.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -89,6 +90,11 @@ int runSweepScene(const char* scenePath) {
           fmt("%.6g", e.frequency) + ", MAC mixing " + fmt("%.2f", e.mixing) + ", exchange " +
           fmt("%.2f", e.exchange) + (e.modeShift ? " (mode shift)" : ""));
     if (r.events.empty()) say("no veering or crossing among the " + std::to_string(scene.modes.count) + " lowest loci");
+    if (!std::isnan(r.criticalSpeed))
+      say(std::isinf(r.criticalSpeed)
+              ? std::string("the steady flow does not diverge at any transport speed")
+              : "critical (divergence) transport speed " + fmt("%.6g", r.criticalSpeed) +
+                    " m/s: the lowest frequency falls to zero there; above it the span is statically unstable");
     if (!r.failure.empty()) {
       if (rank == 0) std::fprintf(stderr, "strand: error: %s\n", r.failure.c_str());
       say("output so far: " + out + " (readable, status = failed)");

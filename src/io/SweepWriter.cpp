@@ -51,6 +51,7 @@ void writeHdf5(const std::string& path, const SweepInfo& info, const solvers::Sw
   writeAttribute(f, "modes", static_cast<int>(n));
   writeAttribute(f, "dimension", info.dimension);
   writeAttribute(f, "max_real_part", r.maxRealPart);
+  if (!std::isnan(r.criticalSpeed)) writeAttribute(f, "critical_speed", r.criticalSpeed);  // +inf: none
 
   Hid g = group(f, "sweep");
   writeArray(g.get(), "parameter", {P}, r.parameter.data());

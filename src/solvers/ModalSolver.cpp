@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 
 #include "strand/solvers/StaticSolver.hpp"
 
@@ -74,7 +75,7 @@ ModalSolver::~ModalSolver() {
   EPSDestroy(&_eps);
   PEPDestroy(&_pep);
   ISDestroy(&_free);
-  for (Mat* m : {&_K, &_M, &_G, &_Kf, &_Mf, &_Gf}) MatDestroy(m);
+  for (Mat* m : {&_K, &_M, &_G, &_Kq, &_Kf, &_Mf, &_Gf}) MatDestroy(m);
 }
 
 PetscErrorCode ModalSolver::assemble(Vec X) {
@@ -121,16 +122,61 @@ PetscErrorCode ModalSolver::addSteadyFlowInertia(Vec X, bool needG) {
   PetscCall(VecSet(V0, 0.0));
   PetscCall(VecSet(A0, 0.0));
   PetscCall(_asm.prescribedMotion(0.0, nullptr, V0, nullptr));  // the material rates pdot
-  PetscCall(_asm.dofs().createMatrix(&Kq, "modal_", MATAIJ));
+  if (!_Kq) PetscCall(_asm.dofs().createMatrix(&_Kq, "modal_", MATAIJ));
+  Kq = _Kq;
   PetscCall(_asm.inertiaJacobian(X, V0, A0, 0.0, 0.0, Kq));
   PetscCall(MatAXPY(_K, 1.0, Kq, SUBSET_NONZERO_PATTERN));
   if (needG) {
     PetscCall(_asm.inertiaJacobian(X, V0, A0, 1.0, 0.0, _G));
     PetscCall(MatAXPY(_G, -1.0, Kq, SAME_NONZERO_PATTERN));
   }
-  PetscCall(MatDestroy(&Kq));
   PetscCall(VecDestroy(&V0));
   PetscCall(VecDestroy(&A0));
+  PetscFunctionReturn(0);
+}
+
+// The divergence of a steady flow. At A = 0 the inertial force is quadratic in the rates, so with
+// every material rate scaled by s the stiffness is K(s) = K_e + s^2 K_q (K_q at the current rates,
+// K_e the elastic and load part). It loses definiteness (a static buckling of the moving span:
+// the lowest frequency falls to zero) at the smallest s with K_e phi = s^2 (-K_q) phi, i.e. at
+// s = 1 / sqrt(nu_max) for the largest nu of (-K_q) phi = nu K_e phi (generalized, K_e
+// factored). For a pinned span this is v_d^2 = (T + EI (pi/l)^2) / rho (Wickert & Mote 1990).
+PetscErrorCode ModalSolver::divergenceFactor(double* factor) {
+  PetscFunctionBeginUser;
+  *factor = std::numeric_limits<double>::infinity();
+  if (!_transport || !_Kq) PetscFunctionReturn(0);
+  MPI_Comm comm = _asm.dofs().comm();
+  Mat B, Ke;
+  PetscCall(MatCreateSubMatrix(_Kq, _free, _free, MAT_INITIAL_MATRIX, &B));
+  PetscCall(MatDuplicate(_Kf, MAT_COPY_VALUES, &Ke));
+  PetscCall(MatAXPY(Ke, -1.0, B, SUBSET_NONZERO_PATTERN));
+  PetscCall(MatScale(B, -1.0));
+  EPS eps;
+  ST st;
+  KSP ksp;
+  PetscCall(EPSCreate(comm, &eps));
+  PetscCall(EPSSetOptionsPrefix(eps, "divergence_"));
+  PetscCall(EPSSetOperators(eps, B, Ke));
+  PetscCall(EPSSetProblemType(eps, EPS_GNHEP));
+  PetscCall(EPSSetWhichEigenpairs(eps, EPS_LARGEST_REAL));
+  PetscCall(EPSSetDimensions(eps, 1, PETSC_DEFAULT, PETSC_DEFAULT));
+  PetscCall(EPSSetTolerances(eps, 1e-12, 500));
+  PetscCall(EPSGetST(eps, &st));
+  PetscCall(STSetType(st, STSHIFT));  // inv(K_e) (-K_q)
+  PetscCall(STGetKSP(st, &ksp));
+  PetscCall(setDirectSolverDefaults(ksp));
+  PetscCall(EPSSetFromOptions(eps));
+  PetscCall(EPSSolve(eps));
+  PetscInt nconv;
+  PetscCall(EPSGetConverged(eps, &nconv));
+  if (nconv > 0) {
+    PetscScalar nu;
+    PetscCall(EPSGetEigenvalue(eps, 0, &nu, nullptr));
+    if (PetscRealPart(nu) > 0.0) *factor = 1.0 / std::sqrt(PetscRealPart(nu));
+  }
+  PetscCall(EPSDestroy(&eps));
+  PetscCall(MatDestroy(&B));
+  PetscCall(MatDestroy(&Ke));
   PetscFunctionReturn(0);
 }
 

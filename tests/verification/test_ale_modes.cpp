@@ -16,7 +16,11 @@
 // theta_{N+1} = theta_{N-1}, which sin(k x) satisfies when cos(k l) = 0), so each discrete
 // frequency is known in closed form:
 //   omega_i^h = (c / h) sqrt(6 (1 - cos k_i h) / (2 + cos k_i h)),     i = 1 .. N,
-// which exceeds the exact c k_i by (k h)^2 / 24 to leading order. Asserted for modes 1..5 and
+// which exceeds the exact c k_i by (k h)^2 / 24 to leading order.
+// requirement: the divergence (critical) transport speed of a span, where its stiffness
+// T - rho v^2 meets the bending buckling load: v_d^2 = (T + EI (pi/l)^2) / rho for pinned ends,
+// (T + 4 EI (pi/l)^2) / rho for clamped ends (Wickert & Mote 1990; the Euler loads), at the
+// Hermite cubic's rate; and a transport_speed sweep reports it. Asserted for modes 1..5 and
 // N = 1..10 to 1e-9, with the table printed.
 #include <gtest/gtest.h>
 
@@ -26,6 +30,7 @@
 
 #include "strand/elements/ElementRegistry.hpp"
 #include "strand/solvers/ModalSolver.hpp"
+#include "strand/solvers/Sweep.hpp"
 #include "support/MovingBeam.hpp"
 #include "support/Scenes.hpp"
 
@@ -69,6 +74,7 @@ struct Modes {
   std::vector<double> omega, residual;
   double maxRealPart = 0.0;
   std::string method;
+  double divergenceFactor = 0.0;
 };
 
 Modes modesOf(const model::SceneDescription& sc, int count) {
@@ -79,11 +85,13 @@ Modes modesOf(const model::SceneDescription& sc, int count) {
   solvers::ModalOptions opt;
   opt.count = count;
   solvers::ModalResult r;
+  double factor = 0.0;
   {
     solvers::ModalSolver s(p.assembler(), opt);
     PetscCallAbort(PETSC_COMM_WORLD, s.solve(X, &r));
+    PetscCallAbort(PETSC_COMM_WORLD, s.divergenceFactor(&factor));
   }
-  Modes m{r.omega, r.relativeResidual, r.maxRealPart, r.method};
+  Modes m{r.omega, r.relativeResidual, r.maxRealPart, r.method, factor};
   solvers::destroyModes(&r);
   VecDestroy(&X);
   return m;
@@ -183,5 +191,49 @@ TEST(AleModes, FixedFreeShaftTorsionHasTheClosedFormOfLinearElements) {
                   exact / (2 * M_PI), m.omega[i - 1] / exact - 1.0);
       EXPECT_NEAR(m.omega[i - 1] / closed, 1.0, 1e-9) << "N " << N << " mode " << i;
     }
+  }
+}
+
+TEST(AleModes, DivergenceSpeedOfPinnedAndClampedSpans) {
+  const double l = 1.0, rho = 7800.0, E = 2e11, r = 2e-3, A = M_PI * r * r, I = M_PI * std::pow(r, 4) / 4.0;
+  const double eps = 8e-5, lam = std::sqrt(1.0 + 2.0 * eps);
+  const double rhoX = rho * A / lam, EI = E * I / lam, T = E * A * eps * lam;
+  for (model::SupportType ends : {model::SupportType::Pinned, model::SupportType::Clamped}) {
+    const double euler = (ends == model::SupportType::Pinned ? 1.0 : 4.0) * EI * M_PI * M_PI / (l * l);
+    const double vd = std::sqrt((T + euler) / rhoX);
+    std::vector<double> err;
+    for (int n : {4, 8, 16}) {
+      auto sc = movingSpan(n, l, E, A, I, rho, lam, 10.0);
+      for (auto& s : sc.supports) s.type = ends;
+      const Modes m = modesOf(sc, 1);
+      err.push_back(std::fabs(10.0 * m.divergenceFactor / vd - 1.0));
+      std::printf("%s ends, N = %2d: v_d = %.8f m/s (exact %.8f m/s), error %.2e\n",
+                  ends == model::SupportType::Pinned ? "pinned" : "clamped", n, 10.0 * m.divergenceFactor, vd, err.back());
+    }
+    EXPECT_LT(err[2], 1e-5);
+    EXPECT_NEAR(std::log2(err[1] / err[2]), 4.0, 0.5);
+  }
+}
+
+TEST(AleModes, TransportSpeedSweepReportsTheCriticalSpeed) {
+  const double l = 1.0, rho = 7800.0, E = 2e11, r = 2e-3, A = M_PI * r * r, I = M_PI * std::pow(r, 4) / 4.0;
+  const double eps = 8e-5, lam = std::sqrt(1.0 + 2.0 * eps);
+  auto sc = movingSpan(16, l, E, A, I, rho, lam, 0.0);
+  sc.bodies[0].hasMaterialMotion = false;
+  sc.modes.count = 3;
+  sc.sweep.present = true;
+  sc.sweep.parameter = model::SweepParameter::TransportSpeed;
+  sc.sweep.from = 0.0;
+  sc.sweep.to = 40.0;
+  sc.sweep.points = 5;
+  solvers::SweepResult res;
+  PetscCallAbort(PETSC_COMM_WORLD, solvers::runSweep(PETSC_COMM_WORLD, sc, &res));
+  ASSERT_EQ(res.parameter.size(), 5u);
+  const double reference = 10.0 * modesOf(movingSpan(16, l, E, A, I, rho, lam, 10.0), 1).divergenceFactor;
+  EXPECT_NEAR(res.criticalSpeed / reference, 1.0, 1e-9);
+  for (size_t i = 0; i < res.parameter.size(); ++i) {
+    const Modes m = modesOf(movingSpan(16, l, E, A, I, rho, lam, res.parameter[i]), 3);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(res.omega[i][k] / m.omega[k], 1.0, 1e-9) << "point " << i;
+    if (i > 0) EXPECT_LT(res.omega[i][0], res.omega[i - 1][0]);  // the first frequency falls with the speed
   }
 }

@@ -11,6 +11,10 @@
 //   projected  the same quadratic problem on the span of the first m eps modes Phi:
 //              (lambda^2 Phi^T M Phi + lambda Phi^T G Phi + Phi^T K_T Phi) y = 0, solved dense
 //              (design section 4: TOAR loses accuracy on fine meshes).
+// Kinds whose mass depends on the coordinates (the ALE kinds) are linearized about their steady
+// material flow at the prescribed rates of t = 0: M = M(q), G = dF/dqdot (the transport's
+// gyroscopic terms), K_T += dF/dq (its stiffness change); with the material flowing the method is
+// pep (or projected), of the general type (ModalSolver.cpp, addSteadyFlowInertia).
 // One ModalSolver keeps its matrices and solver objects between calls, so a sweep reuses the
 // symbolic factorization and warm-starts the eigensolver with the previous eigenvectors.
 #pragma once
@@ -58,6 +62,12 @@ public:
   // Modes about state X (the Jacobian at load factor 1 and the model's current angular speed).
   PetscErrorCode solve(Vec X, ModalResult* result);
   model::ModalMethod method() const { return _method; }
+  // After solve(): whether the material of ALE kinds flows (the quadratic problem of transport),
+  // and the factor s on every material rate at which the steady flow diverges (the stiffness
+  // K_e + s^2 K_q loses definiteness; +inf when it never does). The critical transport speed is
+  // s times the current one.
+  bool transport() const { return _transport; }
+  PetscErrorCode divergenceFactor(double* factor);
 
 private:
   PetscErrorCode assemble(Vec X);
@@ -72,6 +82,7 @@ private:
   ModalOptions _opt;
   model::ModalMethod _method;
   bool _transport = false;  // ALE kinds with material flowing: G from the transport (quadratic problem)
+  Mat _Kq = nullptr;  // the transport's stiffness dF/dq at the current material rates (ALE kinds)
   Mat _K = nullptr, _M = nullptr, _G = nullptr, _Kf = nullptr, _Mf = nullptr, _Gf = nullptr;
   IS _free = nullptr;
   double _shift = 0.0, _lambdaScale = 0.0;  // eps target (negative, small) and |K|/|M| of the last solve

@@ -7,6 +7,7 @@
 #include <petscsys.h>
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,7 @@
 namespace strand::solvers {
 
 struct SweepResult {
-  std::string parameterName;                     // gamma, omega, mass_ratio, mass_location
+  std::string parameterName;                     // gamma, omega, mass_ratio, mass_location, transport_speed
   std::vector<double> parameter;                 // per point
   std::vector<double> gamma;                     // dimensionless angular speed per point
   std::vector<std::vector<double>> omega;        // [point][sorted mode], rad/s
@@ -28,6 +29,9 @@ struct SweepResult {
   std::vector<std::vector<std::vector<double>>> nodes;  // [point][mode]: vibration nodes x / L on body 0
   std::vector<std::vector<std::vector<double>>> shapes; // [point][mode]: body-0 node displacements (rank 0)
   std::string method;                            // modal method used
+  // transport_speed sweeps: the divergence (critical) speed of the steady flow, where the lowest
+  // frequency falls to zero (ModalSolver::divergenceFactor); NaN when not computed, +inf if none
+  double criticalSpeed = std::numeric_limits<double>::quiet_NaN();
   double maxRealPart = 0.0;                      // quadratic problems: max |Re lambda| / |lambda|
   double seconds = 0.0;                          // wall time of the sweep
   std::string failure;                           // non-empty: the steady state failed at a point
