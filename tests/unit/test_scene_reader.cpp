@@ -1219,3 +1219,32 @@ TEST(SceneReader, ElementKindErrorsNameTheKindsKeysAndValues) {
   EXPECT_TRUE(failsWith(edit(kShear2d, "{body: belt, node: 0, type: clamped}", "{body: rope, node: 2, type: fixed, dofs: [4]}"),
                         18, "supports[0].dofs[0]", "must be 0..3 (got 4)"));
 }
+
+// ALE bodies (issue 35): material_motion, payout and initial_stretch only on kinds with material
+// coordinates; modes about a steady flow (material_motion), not about a payout; no rotating frame.
+TEST(SceneReader, AleBodiesAndTheirMotions) {
+  const std::string ale = edit(edit(kBase2d, "element: AncfCable2d", "element: AleCable2d"),
+                               "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}\n",
+                               "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}\n"
+                               "    initial_stretch: 1.001\n");  // 9; supports from line 10
+  const std::string flowing = edit(ale, "    initial_stretch: 1.001\n",
+                                   "    initial_stretch: 1.001\n    material_motion: {function: linear, rate: -2}\n");
+  const std::string modes = edit(flowing, "analysis: static", "analysis: modes");
+  const model::SceneDescription s = parseScene(modes, "scene.yaml");
+  EXPECT_DOUBLE_EQ(s.bodies[0].initialStretch, 1.001);
+  EXPECT_TRUE(s.bodies[0].hasMaterialMotion);
+  EXPECT_DOUBLE_EQ(s.bodies[0].materialMotion.at(3.0).df, -2.0);
+  EXPECT_TRUE(failsWith(flowing, 4, "bodies[0]", "material_motion is a motion in time"));
+  EXPECT_TRUE(failsWith(edit(modes, "material_motion: {function: linear, rate: -2}", "payout: {function: linear, rate: 1}"),
+                        4, "bodies[0]", "payout is a motion in time"));
+  EXPECT_TRUE(failsWith(edit(kBase2d, "    elements: 20\n", "    elements: 20\n    initial_stretch: 1.1\n"), 7,
+                        "bodies[0].initial_stretch", "AncfCable2d has no material coordinates (an ALE kind has: AleCable2d"));
+  const model::SceneDescription sw =
+      parseScene(modes + "sweep: {parameter: transport_speed, from: 0, to: 40, points: 5}\n", "scene.yaml");
+  EXPECT_EQ(sw.sweep.parameter, model::SweepParameter::TransportSpeed);
+  EXPECT_TRUE(failsWith(edit(kBase2d, "analysis: static", "analysis: modes") +
+                            "sweep: {parameter: transport_speed, from: 0, to: 40, points: 5}\n",
+                        13, "sweep", "a transport_speed sweep moves the material of ALE bodies"));
+  EXPECT_TRUE(failsWith(modes + "rotation: {omega: 1}\n", 15, "rotation",
+                        "a rotating frame with AleCable2d bodies is not built"));
+}
