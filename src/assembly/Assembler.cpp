@@ -480,14 +480,20 @@ PetscErrorCode Assembler::prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) con
       if (a) a[m.owned + i] = ddu[i];
     }
   }
+  // a coordinate may be moved by several functions (an ALE node between two material_nodes): sums
+  for (const auto& [owned, k] : _movedCoordinates) {
+    if (x) x[owned] = 0.0;
+    if (v) v[owned] = 0.0;
+    if (a) a[owned] = 0.0;
+  }
   for (const auto& [owned, k] : _movedCoordinates) {
     // the scene's angle is the one at t = 0: phi = angle + f(t) - f(0) (user-guide, "Turning hubs")
     const model::TimeFunction& function = _model.prescribedCoordinates()[k].function;
     const double s = _model.prescribedCoordinates()[k].scale;
     const model::TimeValue f = function.at(t);
-    if (x) x[owned] = s * (f.f - function.at(0.0).f);
-    if (v) v[owned] = s * f.df;
-    if (a) a[owned] = s * f.ddf;
+    if (x) x[owned] += s * (f.f - function.at(0.0).f);
+    if (v) v[owned] += s * f.df;
+    if (a) a[owned] += s * f.ddf;
   }
   if (X) PetscCall(VecRestoreArray(X, &x));
   if (V) PetscCall(VecRestoreArray(V, &v));

@@ -731,9 +731,52 @@ void readPointMasses(const Field& f, BodyDesc& body) {
   }
 }
 
+
+// material_nodes of an ALE body: [{node, at, motion}], nodes distinct, their arc lengths rising
+// with the node index between the body's ends (the nodes between stay equally spaced in material).
+void readMaterialNodes(const Field& f, BodyDesc& body) {
+  const double length = bodyLength(body.geometry);
+  std::vector<std::pair<long, double>> anchors = {{0, 0.0}, {body.elements, length}};
+  for (const Field& item : f.items()) {
+    item.expectMap({"node", "at", "motion"});
+    model::MaterialNodeDesc m;
+    m.mark = item.mark();
+    const Field node = item.child("node");
+    if (node.isScalar("last")) m.node = -1;
+    else {
+      m.node = node.integer("a node index or 'last'");
+      if (m.node < 0 || m.node > body.elements)
+        node.fail("node index out of range: the body has nodes 0.." + std::to_string(body.elements) + " or 'last'");
+    }
+    const long n = m.node < 0 ? body.elements : m.node;
+    for (const model::MaterialNodeDesc& other : body.materialNodes)
+      if ((other.node < 0 ? body.elements : other.node) == n) node.fail("node " + std::to_string(n) + " is listed twice");
+    if (const Field at = item.child("at"); at.present()) {
+      m.hasAt = true;
+      m.at = at.number();
+      if (!(m.at >= 0.0 && m.at <= length))
+        at.fail("an arc length on the body's geometry, 0.." + fmt(length) + " m (got " + fmt(m.at) + ")");
+    }
+    if (const Field motion = item.child("motion"); motion.present()) {
+      m.hasMotion = true;
+      m.motion = readTimeFunction(motion);
+    }
+    const double arc = m.hasAt ? m.at : length * n / body.elements;
+    if (n == 0 || n == body.elements) anchors[n == 0 ? 0 : 1].second = arc;
+    else anchors.push_back({n, arc});
+    body.materialNodes.push_back(m);
+  }
+  std::sort(anchors.begin(), anchors.end());
+  for (size_t k = 0; k + 1 < anchors.size(); ++k)
+    if (!(anchors[k + 1].second > anchors[k].second))
+      f.fail("the nodes' arc lengths must rise with the node index (node " + std::to_string(anchors[k].first) + " at " +
+             fmt(anchors[k].second) + " m, node " + std::to_string(anchors[k + 1].first) + " at " +
+             fmt(anchors[k + 1].second) + " m)");
+}
+
 BodyDesc readBody(const Field& f, const Context& ctx) {
   f.expectMap({"name", "element", "elements", "geometry", "section", "formulation", "stress_free", "point_masses",
-               "initial_velocity", "material_motion", "payout", "initial_stretch"});
+               "initial_velocity", "material_motion", "payout", "initial_stretch", "material_nodes"});
   BodyDesc body;
   body.mark = f.mark();
   const Field name = f.child("name");
@@ -765,7 +808,7 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
   }
   bool ale = false;
   for (int k = 0; k < kind.blocksPerNode; ++k) ale = ale || elements::isMaterialBlock(kind.layout[k]);
-  for (const char* key : {"material_motion", "payout", "initial_stretch"})
+  for (const char* key : {"material_motion", "payout", "initial_stretch", "material_nodes"})
     if (const Field k = f.child(key); k.present() && !ale)
       k.fail(std::string(kind.name) + " has no material coordinates (an ALE kind has: " + aleKindNames() + ")");
   if (const Field motion = f.child("material_motion"); motion.present()) {
@@ -778,6 +821,11 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
     body.payout = readTimeFunction(payout);
   }
   if (const Field stretch = f.child("initial_stretch"); stretch.present()) body.initialStretch = requirePositive(stretch);
+  if (const Field nodes = f.child("material_nodes"); nodes.present()) {
+    if (body.hasMaterialMotion || body.hasPayout)
+      nodes.fail("give either 'material_nodes' or 'material_motion' / 'payout', not both");
+    readMaterialNodes(nodes, body);
+  }
   if (const Field v = f.child("initial_velocity"); v.present()) {
     v.expectMap({"linear", "angular", "center"});
     body.hasInitialVelocity = true;
@@ -841,6 +889,10 @@ public:
             std::string(kind.name) + " (body '" + scene_.bodies[b].name + "') has a mass that changes with its material "
             "coordinates: use generalized_alpha, newmark or hht");
       // modes linearize about the steady flow at material_motion's rate at t = 0 (ModalSolver.hpp)
+      bool nodesMove = false;
+      for (const model::MaterialNodeDesc& m : scene_.bodies[b].materialNodes) nodesMove = nodesMove || m.hasMotion;
+      if (scene_.analysis != model::Analysis::Dynamic && nodesMove)
+        failAt(scene_.bodies[b].mark, "material_nodes with a motion move in time: only with analysis: dynamic");
       if (scene_.analysis == model::Analysis::Static && scene_.bodies[b].hasMaterialMotion)
         failAt(scene_.bodies[b].mark, "material_motion is a motion in time: with analysis: dynamic, or modes about "
                                       "the steady flow");
@@ -1532,9 +1584,12 @@ void requireModalScene(const model::SceneDescription& scene) {
   // refused here, the same way for `analysis: modes` and `strand modes` (issue 32 item 6).
   if (!scene.rigidBodies.empty() || !scene.joints.empty()) failAt(scene.analysisMark, kNoConstrainedModes);
   // modes linearize about a steady state: a material flow at a constant rate, not a payout
-  for (const model::BodyDesc& b : scene.bodies)
+  for (const model::BodyDesc& b : scene.bodies) {
     if (b.hasPayout) failAt(b.mark, "payout changes the body's length: there are no modes about it (use material_motion "
                                     "for a steady flow)");
+    for (const model::MaterialNodeDesc& m : b.materialNodes)
+      if (m.hasMotion) failAt(m.mark, "a moving material node changes the elements' lengths: there are no modes about it");
+  }
 }
 
 model::SceneDescription parseScene(const std::string& yamlText, const std::string& fileNameForMessages) {

@@ -1,5 +1,6 @@
 #include "strand/model/Model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -9,6 +10,51 @@
 
 namespace strand::model {
 namespace {
+
+// The anchors of an ALE body's material_nodes, in node order: node, arc length, motion (or none);
+// node 0 and the last node at the body's ends unless listed.
+struct MaterialAnchor {
+  int node;
+  double arc;
+  const MaterialNodeDesc* desc;  // null: held
+};
+std::vector<MaterialAnchor> materialAnchors(const BodyDesc& bd, int elements, double length) {
+  std::vector<MaterialAnchor> a;
+  for (const MaterialNodeDesc& m : bd.materialNodes) {
+    const int n = m.node < 0 ? elements : static_cast<int>(m.node);
+    a.push_back({n, m.hasAt ? m.at : length * n / elements, &m});
+  }
+  std::sort(a.begin(), a.end(), [](const MaterialAnchor& x, const MaterialAnchor& y) { return x.node < y.node; });
+  if (a.empty() || a.front().node != 0) a.insert(a.begin(), {0, 0.0, nullptr});
+  if (a.back().node != elements) a.push_back({elements, length, nullptr});
+  return a;
+}
+
+std::vector<double> materialNodeArcs(const BodyDesc& bd, int elements, double length) {
+  std::vector<double> arc(elements + 1);
+  const std::vector<MaterialAnchor> a = materialAnchors(bd, elements, length);
+  for (size_t k = 0; k + 1 < a.size(); ++k)
+    for (int n = a[k].node; n <= a[k + 1].node; ++n) {
+      const double w = static_cast<double>(n - a[k].node) / (a[k + 1].node - a[k].node);
+      arc[n] = (1.0 - w) * a[k].arc + w * a[k + 1].arc;
+    }
+  return arc;
+}
+
+// The motions that move node n's material coordinate and their weights (material_nodes).
+std::vector<std::pair<TimeFunction, double>> materialNodeWeights(const BodyDesc& bd, int elements, int n) {
+  std::vector<std::pair<TimeFunction, double>> out;
+  if (bd.materialNodes.empty()) return out;
+  const std::vector<MaterialAnchor> a = materialAnchors(bd, elements, 0.0);
+  for (size_t k = 0; k + 1 < a.size(); ++k) {
+    if (n < a[k].node || n > a[k + 1].node) continue;
+    const double w = static_cast<double>(n - a[k].node) / (a[k + 1].node - a[k].node);
+    if (a[k].desc && a[k].desc->hasMotion && w < 1.0) out.push_back({a[k].desc->motion, 1.0 - w});
+    if (a[k + 1].desc && a[k + 1].desc->hasMotion && w > 0.0) out.push_back({a[k + 1].desc->motion, w});
+    break;
+  }
+  return out;
+}
 
 int nodeIndex(const NodeRef& ref, const Body& b) {
   const long n = ref.node < 0 ? b.elements : ref.node;
@@ -114,6 +160,7 @@ void Model::addBodies(Build& build) {
                         ale ? bd.initialStretch : scene.discretization.slopeScaling ? b.elementLength : 1.0,
                         scene.discretization.gaussPoints};
     b.velocityDependent = info.velocityDependent(bd.section, b.discretization);
+    b.nodeArc = materialNodeArcs(bd, b.elements, b.length);
     b.blocksPerNode = info.blocksPerNode;
     for (int n = 0; n <= b.elements; ++n)
       for (int k = 0; k < b.blocksPerNode; ++k) {
@@ -236,7 +283,7 @@ void Model::placeInitialState(Build& build) {
     Body& b = _bodies[bi];
     const elements::KindInfo& info = b.info();
     for (int n = 0; n <= b.elements; ++n) {
-      const CurvePoint p = build.curves[bi].at(n * b.elementLength);
+      const CurvePoint p = build.curves[bi].at(b.nodeArc[n]);
       const int pb = b.posBlock[n];
       for (int i = 0; i < _dim; ++i) {
         if (placed[pb] && std::fabs(_q0[pb * _dim + i] - p.r[i]) > 1e-9 * std::max(1.0, b.length))
@@ -259,7 +306,7 @@ void Model::placeInitialState(Build& build) {
             break;
           case elements::BlockRole::MaterialCoordinate:  // the unstretched arc length from node 0; padding 0
           case elements::BlockRole::MaterialSpin:        // and the spin angle 0
-            q[0] = n * b.elementLength / b.discretization.gradientScale;
+            q[0] = b.nodeArc[n] / b.discretization.gradientScale;
             break;
           case elements::BlockRole::Position:
             throw std::logic_error("Model: one position block per node");
@@ -342,6 +389,10 @@ void Model::addSupports(Build& build) {
         if (scene.bodies[bi].hasMaterialMotion) _prescribed.push_back({dof, scene.bodies[bi].materialMotion, 1.0});
         if (scene.bodies[bi].hasPayout && n < b.elements)  // equal spacing: node n moves by -(N - n)/N of it
           _prescribed.push_back({dof, scene.bodies[bi].payout, -static_cast<double>(b.elements - n) / b.elements});
+        // material_nodes: a listed node moves by its motion; the ones between two listed nodes a < n < c
+        // by (1 - w) of a's and w of c's, w = (n - a) / (c - a) (equal spacing, Eq. 51)
+        for (const auto& [function, scale] : materialNodeWeights(scene.bodies[bi], b.elements, n))
+          _prescribed.push_back({dof, function, scale});
       }
     }
   }
@@ -449,6 +500,27 @@ void Model::addInitialVelocities(Build& build) {
         cross(&_q0[blk * _dim], v);
         for (int i = 0; i < _dim; ++i) _v0[blk * _dim + i] = v[i];
       }
+    }
+  }
+  // ALE bodies with material_nodes: the material starts at rest (or at the body's initial
+  // velocity) while the nodes move through it at their material rate pdot: a node's velocity is
+  // the material's plus r' pdot (seed 000 Eq. 13 at the node, xi = 0). The slopes' own rate
+  // r'' pdot is left out: exact for the straight initial shapes these bodies take.
+  for (size_t bi = 0; bi < scene.bodies.size(); ++bi) {
+    const Body& b = _bodies[bi];
+    if (scene.bodies[bi].materialNodes.empty()) continue;
+    int materialBlock = -1, slopeBlock = -1;
+    for (int k = 0; k < b.blocksPerNode; ++k) {
+      if (elements::isMaterialBlock(b.info().layout[k])) materialBlock = k;
+      if (b.info().layout[k] == elements::BlockRole::AxialGradient) slopeBlock = k;
+    }
+    if (materialBlock < 0 || slopeBlock < 0) continue;
+    for (int n = 0; n <= b.elements; ++n) {
+      double pdot = 0.0;
+      for (const auto& [function, scale] : materialNodeWeights(scene.bodies[bi], b.elements, n))
+        pdot += scale * function.at(0.0).df;
+      for (int i = 0; i < _dim; ++i)
+        _v0[b.posBlock[n] * _dim + i] += _q0[b.block(n, slopeBlock) * _dim + i] * pdot;
     }
   }
   for (int i = 0; i < numDofs(); ++i)  // supports hold their coordinates (hubs: the prescribed rate)

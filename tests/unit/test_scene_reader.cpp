@@ -1248,3 +1248,32 @@ TEST(SceneReader, AleBodiesAndTheirMotions) {
   EXPECT_TRUE(failsWith(modes + "rotation: {omega: 1}\n", 15, "rotation",
                         "a rotating frame with AleCable2d bodies is not built"));
 }
+
+// material_nodes (issue 35): listed nodes of an ALE body at an arc length, optionally moving; the
+// arc lengths must rise with the node index; not with material_motion; moving ones only in dynamics.
+TEST(SceneReader, AleMaterialNodes) {
+  const std::string ale = edit(edit(kBase2d, "element: AncfCable2d", "element: AleCable2d"), "analysis: static",
+                               "analysis: dynamic");
+  const std::string withNodes =
+      edit(ale, "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}\n",
+           "    section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}\n"
+           "    material_nodes: [{node: 10, at: 0.1, motion: {function: linear, rate: 3}}, {node: last}]\n") +
+      "dynamics: {dt: 0.001, t_end: 0.01}\n";
+  const model::SceneDescription s = parseScene(withNodes, "scene.yaml");
+  ASSERT_EQ(s.bodies[0].materialNodes.size(), 2u);
+  EXPECT_EQ(s.bodies[0].materialNodes[0].node, 10);
+  EXPECT_TRUE(s.bodies[0].materialNodes[0].hasAt);
+  EXPECT_DOUBLE_EQ(s.bodies[0].materialNodes[0].at, 0.1);
+  EXPECT_DOUBLE_EQ(s.bodies[0].materialNodes[0].motion.at(1.0).df, 3.0);
+  EXPECT_EQ(s.bodies[0].materialNodes[1].node, -1);
+  EXPECT_FALSE(s.bodies[0].materialNodes[1].hasMotion);
+  EXPECT_TRUE(failsWith(edit(withNodes, "at: 0.1", "at: 2.5"), 9, "bodies[0].material_nodes[0].at", "0..2 m"));
+  EXPECT_TRUE(failsWith(edit(withNodes, "{node: last}", "{node: 10}"), 9, "bodies[0].material_nodes[1].node",
+                        "node 10 is listed twice"));
+  EXPECT_TRUE(failsWith(edit(withNodes, "{node: last}", "{node: 15, at: 0.05}"), 9, "bodies[0].material_nodes",
+                        "the nodes' arc lengths must rise with the node index"));
+  EXPECT_TRUE(failsWith(edit(withNodes, "analysis: dynamic", "analysis: static"), 4, "bodies[0]",
+                        "material_nodes with a motion move in time"));
+  EXPECT_TRUE(failsWith(edit(withNodes, "    material_nodes:", "    material_motion: {function: linear, rate: 1}\n    material_nodes:"),
+                        10, "bodies[0].material_nodes", "not both"));
+}

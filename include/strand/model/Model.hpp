@@ -37,6 +37,8 @@ struct Body {
   int blocksPerNode = 0;
   std::vector<int> nodeBlocks;          // per node, blocksPerNode blocks in the kind's layout (model numbering)
   std::vector<int> posBlock;            // per node: its position block
+  std::vector<double> nodeArc;          // per node: its arc length on the initial geometry (n elementLength
+                                        // but for an ALE body's material_nodes)
   std::vector<double> referenceValues;  // stress_free: initial: kind-defined values per element (empty: none)
   std::vector<PointMass> pointMasses;
   Vec3 loadPerLength{};                 // gravity rho A g plus distributed loads [N/m]

@@ -47,6 +47,18 @@ struct PointMassDesc {
   SourceMark mark;
 };
 
+// An ALE body's node whose material coordinate the scene sets: its arc length `at` on the initial
+// geometry (default: where equal spacing puts it) and, optionally, a motion: its material
+// coordinate moves by motion(t) - motion(0) [m] (else it is held).
+struct MaterialNodeDesc {
+  long node = 0;  // -1: the last node
+  bool hasAt = false;
+  double at = 0.0;
+  bool hasMotion = false;
+  TimeFunction motion;
+  SourceMark mark;
+};
+
 struct BodyDesc {
   std::string name;
   int kind = 1;  // element kind: an index of elements::kindInfo (elements::findKind("AncfCable3d") = 1)
@@ -71,6 +83,10 @@ struct BodyDesc {
   // ALE bodies: the initial shape is the material stretched by this factor (lambda0 > 0): material
   // coordinates p = s / lambda0 at arc length s, slopes dr/dp = lambda0 t (a pretension)
   double initialStretch = 1.0;
+  // ALE bodies: nodes whose material coordinate is set one by one (a load point riding on the
+  // material, a feeder at an inner node); the nodes between two listed ones stay equally spaced in
+  // material (seed 000 Eq. 51). Node 0 and the last node are held at the body's ends unless listed.
+  std::vector<MaterialNodeDesc> materialNodes;
   bool hasInitialVelocity = false;
   Vec3 linearVelocity{}, angularVelocity{}, velocityCenter{};
   SourceMark mark;
