@@ -336,6 +336,8 @@ private:
     return code;
   }
 
+  static constexpr double kModalResidualTolerance = 1e-6;
+
   int modes(Vec X, std::string* failure) {
     solvers::ModalResult r;
     {
@@ -380,7 +382,24 @@ private:
           ", residual " + fmt("%.1e", r.relativeResidual[k]) + ")");
     }
     if (!r.note.empty()) say("note: " + r.note);
-    _writer->writeModes(hz, shapes);
+    // Every eigenpair whose relative residual exceeds the tolerance is flagged on stderr and in the
+    // output (flagged_modes; each mode's relative_residual): its frequency and shape are not to be trusted
+    // (issue 36 item 3). -modal_residual_tol sets the tolerance (default 1e-6).
+    PetscReal tol = kModalResidualTolerance;
+    PetscCallAbort(_comm, PetscOptionsGetReal(nullptr, nullptr, "-modal_residual_tol", &tol, nullptr));
+    int flagged = 0;
+    for (size_t k = 0; k < r.omega.size(); ++k)
+      if (!(r.relativeResidual[k] <= tol)) {
+        ++flagged;
+        if (_rank == 0)
+          std::fprintf(stderr, "strand: warning: mode %zu (%.8g Hz) has relative residual %.1e > %.0e: not converged; "
+                               "try more modes (modes.count), -modal_eps_ncv or -modal_st_shift\n",
+                       k + 1, hz[k], r.relativeResidual[k], tol);
+      }
+    _writer->setAttribute("residual_tolerance", tol);
+    _writer->setAttribute("flagged_modes", static_cast<double>(flagged));
+    if (flagged) say(std::to_string(flagged) + " mode(s) flagged: residual above " + fmt("%.0e", tol) + " (stderr)");
+    _writer->writeModes(hz, shapes, r.relativeResidual);
     VecDestroy(&Y);
     solvers::destroyModes(&r);
     return kExitSuccess;

@@ -351,13 +351,17 @@ struct OutputWriter::Impl {
     s.size += 1;
   }
 
-  void writeModes(const std::vector<double>& freqs, const std::vector<std::vector<BodyFrame>>& shapes) {
+  void writeModes(const std::vector<double>& freqs, const std::vector<std::vector<BodyFrame>>& shapes,
+                  const std::vector<double>& residuals) {
     requireOpen("writeModes");
     if (modesWritten) throw std::logic_error("OutputWriter::writeModes called twice on '" + path + "'");
     if (freqs.size() != shapes.size())
       throw std::invalid_argument("OutputWriter::writeModes: " + std::to_string(freqs.size()) +
                                   " frequencies but " + std::to_string(shapes.size()) + " mode shapes");
     for (std::size_t m = 0; m < shapes.size(); ++m) checkFrames(shapes[m], "mode " + std::to_string(m));
+    if (!residuals.empty() && residuals.size() != freqs.size())
+      throw std::invalid_argument("OutputWriter::writeModes: " + std::to_string(freqs.size()) + " frequencies but " +
+                                  std::to_string(residuals.size()) + " residuals");
 
     std::string grids;
     try {
@@ -376,6 +380,7 @@ struct OutputWriter::Impl {
         const std::string name = formatIndex(static_cast<int>(m));
         Hid g = group(modes.get(), name);
         writeAttribute(g.get(), "frequency_hz", freqs[m]);
+        if (!residuals.empty()) writeAttribute(g.get(), "relative_residual", residuals[m]);
         writeBodies(g.get(), shapes[m]);
         // ParaView steps through the modes as "time" = mode index; the frequency rides along.
         grids += spatialGrid("mode_" + name, static_cast<double>(m), "/modes/" + name,
@@ -479,8 +484,8 @@ void OutputWriter::writeScalarSeries(const std::string& name, double value) {
 }
 
 void OutputWriter::writeModes(const std::vector<double>& frequenciesHz,
-                              const std::vector<std::vector<BodyFrame>>& shapes) {
-  impl_->collective("write", [&] { impl_->writeModes(frequenciesHz, shapes); });
+                              const std::vector<std::vector<BodyFrame>>& shapes, const std::vector<double>& residuals) {
+  impl_->collective("write", [&] { impl_->writeModes(frequenciesHz, shapes, residuals); });
   impl_->modesWritten = true;
 }
 

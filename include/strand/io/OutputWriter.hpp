@@ -92,9 +92,10 @@ public:
   void writeFrame(double time, const std::vector<BodyFrame>& frames);
   // Appends `value` to /series/<name>, creating the dataset on first use.
   void writeScalarSeries(const std::string& name, double value);
-  // Writes /modes (once per run) and <stem>_modes.xmf; shapes[m] has one entry per body.
+  // Writes /modes (once per run) and <stem>_modes.xmf; shapes[m] has one entry per body. With
+  // residuals (one per mode): each mode group's attribute `relative_residual`.
   void writeModes(const std::vector<double>& frequenciesHz,
-                  const std::vector<std::vector<BodyFrame>>& shapes);
+                  const std::vector<std::vector<BodyFrame>>& shapes, const std::vector<double>& residuals = {});
   // Root-group attributes; an existing attribute of the same name is replaced.
   void setAttribute(const std::string& name, double value);
   void setAttribute(const std::string& name, const std::string& value);
