@@ -196,3 +196,22 @@ TEST(AleBeamShaft, WithTheMaterialHeldItIsTheCablePlusTheLinearTorsionElement) {
     EXPECT_NEAR(F[i], Fc[i], 1e-12 * sF) << "inertia entry " << i;
   }
 }
+
+// requirement (Eq. 38): the twist damping G I_p c_t thetadot' acts on the material's twist rate;
+// with the material held it adds the linear torsion element's damping torque
+// G I_p c_t (vtheta2 - vtheta1) / L to theta2 (and its negative to theta1).
+TEST(AleBeamShaft, TwistDampingOnTheHeldMaterialIsTheLinearElements) {
+  Fixture fx(false);
+  SectionValues s;
+  s.numbers = {{"E", kE}, {"nu", kNu}, {"rho", kRho}, {"radius", kR}, {"inner_radius", kRi}, {"damping_torsion", 0.02}};
+  const E::Body damped = E::body(s, {0.7, 1.0, 5});
+  ASSERT_TRUE(E::velocityDependent(damped));
+  double fd[N], f0[N];
+  E::force(damped, E::element(damped, nullptr), fx.q0, fx.u, fx.v, fd);
+  E::force(damped, E::element(damped, nullptr), fx.q0, fx.u, static_cast<const double*>(nullptr), f0);
+  const double G = kE / (2.0 * (1.0 + kNu)), torque = G * fx.Ip * 0.02 * (fx.v[E::kT2] - fx.v[E::kT1]) / 0.7;
+  EXPECT_NEAR(fd[E::kT2] - f0[E::kT2], torque, 1e-12 * std::fabs(torque));
+  EXPECT_NEAR(fd[E::kT1] - f0[E::kT1], -torque, 1e-12 * std::fabs(torque));
+  for (int k = 0; k < N; ++k)
+    if (k != E::kT1 && k != E::kT2 && k != E::kP1 && k != E::kP2) EXPECT_EQ(fd[k], f0[k]) << "entry " << k;
+}

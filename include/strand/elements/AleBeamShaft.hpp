@@ -40,6 +40,9 @@ public:
       {"rho", "density [kg/m^3]", true, 0.0, 0.0, false, kNoLimit},
       {"radius", "outer radius of the circular section [m]", true, 0.0, 0.0, false, kNoLimit},
       {"inner_radius", "inner radius of a tube [m] (0: solid)", false, 0.0, 0.0, true, kNoLimit},
+      {"damping_axial", "Kelvin-Voigt coefficient on the material's axial strain rate [s]", false, 0.0, 0.0, true, kNoLimit},
+      {"damping_bending", "Kelvin-Voigt coefficient on the material's curvature rate [s]", false, 0.0, 0.0, true, kNoLimit},
+      {"damping_torsion", "Kelvin-Voigt coefficient on the material's twist rate [s]", false, 0.0, 0.0, true, kNoLimit},
   };
 
   // A = pi (R^2 - r^2), I = pi (R^4 - r^4) / 4, I_p = 2 I (circular section).
@@ -54,6 +57,7 @@ public:
   };
   struct Body : Cable::Body {
     double GIp = 0.0, rhoIp = 0.0;  // torsion stiffness [N m^2], polar inertia per length [kg m]
+    double dampTorsion = 0.0;       // Kelvin-Voigt coefficient on the twist rate [s] (Eq. 38)
   };
   struct Element {
     const Body* body = nullptr;
@@ -66,31 +70,50 @@ public:
   static Body body(const SectionValues& v, const BodyDiscretization& d) {
     const Circle c(v);
     SectionValues cable;
-    cable.numbers = {{"E", v.number("E")}, {"A", c.A}, {"I", c.I}, {"rho", v.number("rho")}};
+    cable.numbers = {{"E", v.number("E")},
+                     {"A", c.A},
+                     {"I", c.I},
+                     {"rho", v.number("rho")},
+                     {"damping_axial", v.number("damping_axial")},
+                     {"damping_bending", v.number("damping_bending")}};
     Body b;
     static_cast<Cable::Body&>(b) = Cable::body(cable, d);
     b.GIp = v.number("E") / (2.0 * (1.0 + v.number("nu", 0.3))) * c.Ip;
     b.rhoIp = v.number("rho") * c.Ip;
+    b.dampTorsion = v.number("damping_torsion");
     return b;
   }
   static Element element(const Body& b, const double*) { return Element{&b}; }
 
   // ---- elastic force and tangent: the cable's plus torsion ----
 
+  // Twist damping (Eq. 38): the torque G I_p c_t thetadot' on the material's twist rate, the
+  // material derivative of theta' = tx / L (uniform in the element): (txdot L - tx Ldot) / L^2; its
+  // virtual work at fixed xi, L int torque delta(tx / L) dxi, adds -torque tx / L to the p2 row.
   template <class S>
   static void force(const Body& b, const Element&, const double* q0, const S* u, const S* v, S* f) {
     Cable::force(b, Cable::Element{&b}, q0, u, v, f);
     const S L = (q0[kP2] + u[kP2]) - (q0[kP1] + u[kP1]);
     const S tx = (q0[kT2] + u[kT2]) - (q0[kT1] + u[kT1]);
-    const S torque = b.GIp * tx / L, dUdL = -0.5 * b.GIp * tx * tx / (L * L);
+    S torque = b.GIp * tx / L, dUdL = -0.5 * b.GIp * tx * tx / (L * L);
+    if (v && b.dampTorsion != 0.0) {
+      const S rate = ((v[kT2] - v[kT1]) * L - tx * (v[kP2] - v[kP1])) / (L * L);
+      const S damped = b.GIp * b.dampTorsion * rate;
+      torque += damped;
+      dUdL -= damped * tx / L;
+    }
     f[kT1] -= torque;
     f[kT2] += torque;
     f[kP1] -= dUdL;
     f[kP2] += dUdL;
   }
 
-  static void tangent(const Body& b, const Element&, const double* q0, const double* u, const double* v, double* f,
+  static void tangent(const Body& b, const Element& e, const double* q0, const double* u, const double* v, double* f,
                       double* K, double* Dm) {
+    if (v && velocityDependent(b)) {
+      dualTangent<AleBeamShaft3d>(b, e, q0, u, v, f, K, Dm);
+      return;
+    }
     Cable::tangent(b, Cable::Element{&b}, q0, u, v, nullptr, K, Dm);
     if (f) force(b, Element{&b}, q0, u, v, f);
     const double L = (q0[kP2] + u[kP2]) - (q0[kP1] + u[kP1]);
@@ -172,7 +195,7 @@ public:
     }
   }
 
-  static bool velocityDependent(const Body&) { return false; }
+  static bool velocityDependent(const Body& b) { return Cable::velocityDependent(b) || b.dampTorsion != 0.0; }
 
 private:
   // The spin of the material point xi: its rate thd, its acceleration thdd and the row S_r over the

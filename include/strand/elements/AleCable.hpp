@@ -33,6 +33,7 @@
 
 #include "strand/elements/AncfCable.hpp"
 #include "strand/elements/ElementKind.hpp"
+#include "strand/math/Dual.hpp"
 #include "strand/math/Gauss.hpp"
 #include "strand/math/Hermite.hpp"
 
@@ -64,6 +65,8 @@ public:
       {"A", "cross-section area [m^2]", true, 0.0, 0.0, false, kNoLimit},
       {"I", "second moment of area [m^4]", true, 0.0, 0.0, false, kNoLimit},
       {"rho", "density [kg/m^3]", true, 0.0, 0.0, false, kNoLimit},
+      {"damping_axial", "Kelvin-Voigt coefficient on the material's axial strain rate [s]", false, 0.0, 0.0, true, kNoLimit},
+      {"damping_bending", "Kelvin-Voigt coefficient on the material's curvature rate [s]", false, 0.0, 0.0, true, kNoLimit},
   };
   static constexpr int kOptionCount = 0;
   static constexpr OptionKey kOptions[1] = {{nullptr, nullptr, {nullptr}}};
@@ -81,30 +84,40 @@ public:
   }
   static Body body(const SectionValues& v, const BodyDiscretization& d) {
     Body b;
-    b.section = {v.number("E") * v.number("A"), v.number("E") * v.number("I"), v.number("rho") * v.number("A"), 0.0, 0.0};
+    b.section = {v.number("E") * v.number("A"), v.number("E") * v.number("I"), v.number("rho") * v.number("A"),
+                 v.number("damping_axial"), v.number("damping_bending")};
     b.elastic = math::gaussLegendre(d.gaussPoints);
     b.inertial = math::gaussLegendre(4);
     return b;
   }
   static Element element(const Body& b, const double*) { return Element{&b}; }
-  static bool velocityDependent(const Body&) { return false; }  // no damping yet; the inertia is separate
+  // Kelvin-Voigt damping on the material's strain rates (seed 000 Eq. 31-37); the inertia is separate
+  static bool velocityDependent(const Body& b) { return b.section.dampAxial != 0.0 || b.section.dampBending != 0.0; }
 
   // ---- elastic force and tangent ----
 
+  // Damping (Eq. 31-37, with the rates of Eq. 33-34): the Kelvin-Voigt stresses act on the strain
+  // rates of the material point, the material derivative of G = (r', r'') at fixed p:
+  //   Gdot = (dG/dq at fixed xi) qdot + G_xi xidot,   G_xi = (L r'', L r'''),
+  // with xidot = -((1 - xi) p1dot + xi p2dot) / L; their virtual work is taken at fixed xi, as the
+  // seed's Eq. 31 does (delta eps = eps_q delta q), so the p rows get L f_G . G_L and no W term.
   template <class S>
-  static void force(const Body& b, const Element&, const double* q0, const S* u, const S*, S* f) {
+  static void force(const Body& b, const Element&, const double* q0, const S* u, const S* v, S* f) {
     S q[kDof];
     for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], f[k] = S(0.0);
     const S L = q[kP2] - q[kP1];
+    const bool damped = v && velocityDependent(b);
     S fL(0.0);
     for (int g = 0; g < b.elastic.size(); ++g) {
-      Coefficients<S> c(b.elastic.x[g], L);
-      S G[kG], fG[kG];
+      const double xi = b.elastic.x[g];
+      Coefficients<S> c(xi, L);
+      S G[kG], fG[kG], Gd[kG];
       c.gather(q, G);
       const S W = energyDensity(b.section, G);
       S eps(0.0);
       for (int i = 0; i < D; ++i) eps += 0.5 * G[i] * G[i];
-      Cable::pointForce(b.section, 0.0, eps - 0.5, G, static_cast<const S*>(nullptr), fG);
+      if (damped) materialRate(c, xi, q, v, L, G, Gd);
+      Cable::pointForce(b.section, 0.0, eps - 0.5, G, damped ? Gd : static_cast<const S*>(nullptr), fG);
       const S wl = b.elastic.w[g] * L;
       for (int k = 0; k < 4; ++k)
         for (int i = 0; i < D; ++i) f[slotIndex(k) + i] += wl * (c.B1[k] * fG[i] + c.B2[k] * fG[D + i]);
@@ -120,6 +133,10 @@ public:
 
   static void tangent(const Body& b, const Element& e, const double* q0, const double* u, const double* v, double* f,
                       double* K, double* Dm) {
+    if (v && velocityDependent(b)) {
+      dualTangent<AleCable>(b, e, q0, u, v, f, K, Dm);
+      return;
+    }
     double q[kDof];
     for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k];
     for (int k = 0; k < kDof * kDof; ++k) {
@@ -175,6 +192,27 @@ public:
     K[kP2 * kDof + kP2] += KLL;
     K[kP1 * kDof + kP2] -= KLL;
     K[kP2 * kDof + kP1] -= KLL;
+  }
+
+  // The damped tangent: K = df/du and D = df/dv of E::force by forward-mode dual numbers, exact to
+  // round-off (the rate terms' hand derivation through xidot and r''' is not written; its cost is
+  // in docs/elements/ale.md). The undamped tangent stays the hand-derived one above.
+  template <class E>
+  static void dualTangent(const typename E::Body& b, const typename E::Element& e, const double* q0, const double* u,
+                          const double* v, double* f, double* K, double* Dm) {
+    using Dl = math::Dual<kDof>;
+    Dl x[kDof], y[kDof], fd[kDof];
+    for (int k = 0; k < kDof; ++k) x[k] = Dl::variable(u[k], k), y[k] = Dl(v[k]);
+    E::force(b, e, q0, x, y, fd);
+    for (int r = 0; r < kDof; ++r) {
+      if (f) f[r] = fd[r].v;
+      for (int c = 0; c < kDof; ++c) K[r * kDof + c] = fd[r].d[c];
+    }
+    if (!Dm) return;
+    for (int k = 0; k < kDof; ++k) x[k] = Dl(u[k]), y[k] = Dl::variable(v[k], k);
+    E::force(b, e, q0, x, y, fd);
+    for (int r = 0; r < kDof; ++r)
+      for (int c = 0; c < kDof; ++c) Dm[r * kDof + c] = fd[r].d[c];
   }
 
   template <class S>
@@ -402,6 +440,24 @@ private:
     template <class Q> void gatherL(const Q* q, S* G) const { combine(dB1, dB2, q, G); }
     template <class Q> void gatherLL(const Q* q, S* G) const { combine(ddB1, ddB2, q, G); }
   };
+
+  // Gdot of the material point xi (see force()): the B-weighted slot velocities, the L-derivative
+  // times Ldot, and G_xi xidot with r''' = sum h'''_k (slot weights 1/L^3 for positions, 1/L^2 for
+  // slopes; h''' = 12, 6, -12, 6 for the cubic Hermite functions on [0, 1]).
+  template <class S, class Q, class V>
+  static void materialRate(const Coefficients<S>& c, double xi, const Q* q, const V* v, const S& L, const S* G, S* Gd) {
+    static constexpr double h3[4] = {12.0, 6.0, -12.0, 6.0};
+    S Gv[kG], GL[kG];
+    c.gather(v, Gv);
+    c.gatherL(q, GL);
+    const S Ldot = v[kP2] - v[kP1], xid = -((1.0 - xi) * v[kP1] + xi * v[kP2]) / L;
+    for (int i = 0; i < D; ++i) {
+      S r3(0.0);
+      for (int k = 0; k < 4; ++k) r3 += (k % 2 == 0 ? h3[k] / (L * L * L) : h3[k] / (L * L)) * q[slotIndex(k) + i];
+      Gd[i] = Gv[i] + GL[i] * Ldot + L * G[D + i] * xid;
+      Gd[D + i] = Gv[D + i] + GL[D + i] * Ldot + L * r3 * xid;
+    }
+  }
 
   // One material point xi of the element: its velocity and acceleration (seed 000 Eq. 13-17), the
   // columns S_p1, S_p2 of S = d rdot / d qdot, and (derivatives()) the exact derivatives of rddot
