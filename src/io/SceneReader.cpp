@@ -1430,7 +1430,7 @@ private:
     if (const Field g = f.child("gravity"); g.present()) scene_.loads.gravity = readVector(g, ctx_.dim);
     if (const Field nodal = f.child("nodal"); nodal.present()) {
       for (const Field& item : nodal.items()) {
-        item.expectMap({"body", "node", "force", "moment", "function"});
+        item.expectMap({"body", "node", "force", "moment", "spin_torque", "function"});
         model::NodalLoadDesc load;
         load.mark = item.mark();
         load.at = readNodeRef(item);
@@ -1438,11 +1438,19 @@ private:
           load.force = readVector(force, ctx_.dim);
         if (const Field moment = item.child("moment"); moment.present())
           load.moment = readMoment(moment, ctx_.dim);
+        if (const Field torque = item.child("spin_torque"); torque.present()) {
+          const elements::KindInfo& kind = elements::kindInfo(findBody(item.child("body")).kind);
+          bool spin = false;
+          for (int k = 0; k < kind.blocksPerNode; ++k) spin = spin || kind.layout[k] == elements::BlockRole::MaterialSpin;
+          if (!spin) torque.fail(std::string(kind.name) + " has no spin angle (AleBeamShaft3d has)");
+          load.spinTorque = torque.number();
+        }
         if (const Field fn = item.child("function"); fn.present()) {
           if (scene_.analysis != model::Analysis::Dynamic)
             fn.fail("time-dependent loads need analysis: dynamic");
           if (item.child("moment").present()) fn.fail("scales a force; give the moment as a separate, constant load");
-          if (!item.child("force").present()) fn.fail("needs a 'force' to scale");
+          if (!item.child("force").present() && !item.child("spin_torque").present())
+            fn.fail("needs a 'force' or 'spin_torque' to scale");
           load.timed = true;
           load.function = readTimeFunction(fn);
         }

@@ -429,16 +429,26 @@ void Model::addLoads(Build& build) {
   for (const NodalLoadDesc& l : scene.loads.nodal) {
     const Body& b = build.body(_bodies, l.at.body, l.at.mark);
     const int n = nodeIndex(l.at, b);
+    // a torque about the centerline is the generalized force on the spin angle (component 1 of the
+    // MaterialSpin block): its virtual work is T delta theta (seed 000 Eq. 45-46)
+    int spinDof = -1;
+    for (int k = 0; k < b.blocksPerNode; ++k)
+      if (b.info().layout[k] == elements::BlockRole::MaterialSpin) spinDof = b.block(n, k) * _dim + 1;
     if (l.timed) {
       TimedLoad t{l.function, {}, {}};
       for (int i = 0; i < _dim; ++i) {
         t.dofs.push_back(b.posBlock[n] * _dim + i);
         t.values.push_back(l.force[i]);
       }
+      if (spinDof >= 0 && l.spinTorque != 0.0) {
+        t.dofs.push_back(spinDof);
+        t.values.push_back(l.spinTorque);
+      }
       _timed.push_back(std::move(t));
       continue;
     }
     for (int i = 0; i < _dim; ++i) _nodalForce[b.posBlock[n] * _dim + i] += l.force[i];
+    if (spinDof >= 0) _nodalForce[spinDof] += l.spinTorque;
     if (l.moment[0] != 0.0 || l.moment[1] != 0.0 || l.moment[2] != 0.0) _moments.push_back({b.orientationBlock(n), l.moment});
   }
   for (const DistributedLoadDesc& l : scene.loads.distributed) {

@@ -1277,3 +1277,14 @@ TEST(SceneReader, AleMaterialNodes) {
   EXPECT_TRUE(failsWith(edit(withNodes, "    material_nodes:", "    material_motion: {function: linear, rate: 1}\n    material_nodes:"),
                         10, "bodies[0].material_nodes", "not both"));
 }
+
+// spin_torque (issue 35): only on kinds with a spin angle.
+TEST(SceneReader, SpinTorqueNeedsASpinAngle) {
+  EXPECT_TRUE(failsWith(edit(kBase3d, "force: [0, 0, -1]}", "force: [0, 0, -1], spin_torque: 5}"), 12,
+                        "loads.nodal[0].spin_torque", "AncfCable3d has no spin angle (AleBeamShaft3d has)"));
+  const std::string shaft =
+      edit(edit(kBase3d, "element: AncfCable3d", "element: AleBeamShaft3d"),
+           "section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}", "section: {E: 2.1e11, rho: 7850, radius: 0.005}");
+  const model::SceneDescription s = parseScene(edit(shaft, "force: [0, 0, -1]}", "spin_torque: 5}"), "scene.yaml");
+  EXPECT_DOUBLE_EQ(s.loads.nodal[0].spinTorque, 5.0);
+}

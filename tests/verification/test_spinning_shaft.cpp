@@ -186,3 +186,46 @@ TEST(SpinningShaft, MovingRotatingLoadFollowsTheModalSeries) {
     EXPECT_GT(std::log2(worst[1] / worst[2]), 2.0) << "falling with N";
   }
 }
+
+// requirement (seed 000 Eq. 45-46): a torque T about the centerline at the free end of a shaft
+// held at the other end twists it by theta(l) = T l / (G I_p), exactly for the linear spin
+// interpolation at any N; the twist is linear along the shaft.
+TEST(SpinningShaft, EndTorqueTwistsTheShaftByTlOverGIp) {
+  for (int n : {1, 3, 8}) {
+    model::SceneDescription sc;
+    sc.file = "(test)";
+    sc.dimension = 3;
+    sc.analysis = model::Analysis::Static;
+    model::BodyDesc b;
+    b.name = "shaft";
+    b.kind = elements::findKind("AleBeamShaft3d");
+    b.elements = n;
+    b.geometry.kind = model::GeometryKind::Line;
+    b.geometry.start = {0, 0, 0};
+    b.geometry.end = {0, 0, kL};
+    b.section.numbers = {{"E", kE}, {"nu", 0.3}, {"rho", kRho}, {"radius", kR}, {"inner_radius", 0.004}};
+    sc.bodies.push_back(b);
+    model::SupportDesc root;
+    root.at.body = "shaft";
+    root.at.node = 0;
+    root.type = model::SupportType::Fixed;
+    root.dofs = {0, 1, 2, 3, 4, 5, 7};  // clamped, and its spin angle held
+    sc.supports.push_back(root);
+    model::NodalLoadDesc torque;
+    torque.at.body = "shaft";
+    torque.at.node = -1;
+    torque.spinTorque = 250.0;
+    sc.loads.nodal.push_back(torque);
+    solvers::Problem p(PETSC_COMM_WORLD, sc);
+    std::string failure;
+    const std::vector<double> q = solveStatic(p, 1, &failure);
+    EXPECT_EQ(failure, "");
+    if (q.empty()) continue;  // other ranks
+    const double Ip = M_PI * (std::pow(kR, 4) - std::pow(0.004, 4)) / 2.0, G = kE / 2.6;
+    const model::Body& body = p.model().bodies()[0];
+    for (int k = 0; k <= n; ++k) {
+      const double theta = q[body.block(k, 2) * 3 + 1], exact = 250.0 * (kL * k / n) / (G * Ip);
+      EXPECT_NEAR(theta, exact, 1e-9 * std::fabs(250.0 * kL / (G * Ip))) << "N " << n << " node " << k;
+    }
+  }
+}

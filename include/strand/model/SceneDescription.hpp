@@ -174,6 +174,7 @@ struct JointDesc {
 struct NodalLoadDesc {
   NodeRef at;
   Vec3 force{}, moment{};  // 2D uses x, y of force and z of moment
+  double spinTorque = 0.0;  // [N m] about the centerline, on the spin angle (AleBeamShaft3d, Eq. 45-46)
   bool timed = false;      // force scaled by `function` (dynamics only; no moment then)
   TimeFunction function;
   SourceMark mark;
