@@ -26,6 +26,7 @@
 #include "strand/io/SceneReader.hpp"
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/ModalSolver.hpp"
+#include "strand/solvers/ModeLabels.hpp"
 #include "strand/solvers/Problem.hpp"
 #include "strand/solvers/StaticSolver.hpp"
 
@@ -359,6 +360,10 @@ private:
         else say("note: the divergence speed could not be computed: " + e);
       }
     }
+    std::vector<solvers::ModeLabel> labels;
+    if (const std::string e = guardSolve(_comm, [&] { return solvers::labelModes(_problem.assembler(), X, r, &labels); });
+        !e.empty())
+      say("note: the modes could not be labelled: " + e);
     const double T = _problem.model().scales().time();
     std::vector<double> hz;
     std::vector<std::vector<io::BodyFrame>> shapes;
@@ -379,7 +384,10 @@ private:
       say("mode " + std::to_string(k + 1) + ": " + fmt("%.8g Hz", hz.back()) + "  (" +
           (r.rigid[k] ? std::string("rigid-body mode") : "omega " + fmt("%.8g rad/s", r.omega[k]) + ", omega_bar " +
                                                              fmt("%.8g", r.omega[k] * T)) +
-          ", residual " + fmt("%.1e", r.relativeResidual[k]) + ")");
+          ", residual " + fmt("%.1e", r.relativeResidual[k]) + ")" +
+          (k < labels.size() && !labels[k].name.empty()
+               ? "  " + labels[k].name + (labels[k].name == "rigid" ? "" : fmt(" %.0f%%", 100.0 * labels[k].share))
+               : ""));
     }
     if (!r.note.empty()) say("note: " + r.note);
     // Every eigenpair whose relative residual exceeds the tolerance is flagged on stderr and in the
@@ -399,7 +407,9 @@ private:
     _writer->setAttribute("residual_tolerance", tol);
     _writer->setAttribute("flagged_modes", static_cast<double>(flagged));
     if (flagged) say(std::to_string(flagged) + " mode(s) flagged: residual above " + fmt("%.0e", tol) + " (stderr)");
-    _writer->writeModes(hz, shapes, r.relativeResidual);
+    std::vector<io::OutputWriter::ModeLabelOut> labelsOut;
+    for (const solvers::ModeLabel& l : labels) labelsOut.push_back({l.name, l.share});
+    _writer->writeModes(hz, shapes, r.relativeResidual, labelsOut);
     VecDestroy(&Y);
     solvers::destroyModes(&r);
     return kExitSuccess;

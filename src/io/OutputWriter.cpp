@@ -352,7 +352,7 @@ struct OutputWriter::Impl {
   }
 
   void writeModes(const std::vector<double>& freqs, const std::vector<std::vector<BodyFrame>>& shapes,
-                  const std::vector<double>& residuals) {
+                  const std::vector<double>& residuals, const std::vector<OutputWriter::ModeLabelOut>& labels) {
     requireOpen("writeModes");
     if (modesWritten) throw std::logic_error("OutputWriter::writeModes called twice on '" + path + "'");
     if (freqs.size() != shapes.size())
@@ -381,6 +381,10 @@ struct OutputWriter::Impl {
         Hid g = group(modes.get(), name);
         writeAttribute(g.get(), "frequency_hz", freqs[m]);
         if (!residuals.empty()) writeAttribute(g.get(), "relative_residual", residuals[m]);
+        if (m < labels.size()) {
+          writeAttribute(g.get(), "label", labels[m].name);
+          writeAttribute(g.get(), "label_share", labels[m].share);
+        }
         writeBodies(g.get(), shapes[m]);
         // ParaView steps through the modes as "time" = mode index; the frequency rides along.
         grids += spatialGrid("mode_" + name, static_cast<double>(m), "/modes/" + name,
@@ -484,8 +488,9 @@ void OutputWriter::writeScalarSeries(const std::string& name, double value) {
 }
 
 void OutputWriter::writeModes(const std::vector<double>& frequenciesHz,
-                              const std::vector<std::vector<BodyFrame>>& shapes, const std::vector<double>& residuals) {
-  impl_->collective("write", [&] { impl_->writeModes(frequenciesHz, shapes, residuals); });
+                              const std::vector<std::vector<BodyFrame>>& shapes, const std::vector<double>& residuals,
+                              const std::vector<ModeLabelOut>& labels) {
+  impl_->collective("write", [&] { impl_->writeModes(frequenciesHz, shapes, residuals, labels); });
   impl_->modesWritten = true;
 }
 

@@ -214,6 +214,22 @@ TEST(Cli, RotatingBeamModesScene) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const char* w : {"omega_bar 7.360", "omega_bar 26.809", "omega_bar 66.684"})
     EXPECT_NE(r.output.find(w), std::string::npos) << w << "\n" << r.output;
+  // issue 36 item 4: each mode labelled by where its kinetic energy lies; Wright et al.'s values are
+  // the flapwise ones (out of the plane of rotation), the others lead-lag
+  for (const char* w : {"omega_bar 7.3603765, residual", "omega_bar 26.809115, residual", "omega_bar 66.684167, residual"}) {
+    const size_t at = r.output.find(w);
+    ASSERT_NE(at, std::string::npos) << w << "\n" << r.output;
+    EXPECT_NE(r.output.substr(at, r.output.find('\n', at) - at).find("flapwise 100%"), std::string::npos) << r.output;
+  }
+  EXPECT_NE(r.output.find("omega_bar 4.2632315, residual"), std::string::npos) << r.output;
+  if (haveH5py()) {
+    auto c = python(dir, "import sys, h5py\nf = h5py.File(sys.argv[1], 'r')\n"
+                         "labels = [f['modes/%05d' % k].attrs['label'] for k in range(6)]\n"
+                         "assert labels == ['lead-lag', 'flapwise'] * 3, labels\n"
+                         "assert min(f['modes/%05d' % k].attrs['label_share'] for k in range(6)) > 0.99\nprint('ok')\n",
+                    out.string());
+    EXPECT_EQ(c.exitCode, 0) << c.output;
+  }
   fs::remove_all(dir);
 }
 

@@ -30,6 +30,7 @@
 
 #include "strand/elements/ElementRegistry.hpp"
 #include "strand/solvers/ModalSolver.hpp"
+#include "strand/solvers/ModeLabels.hpp"
 #include "strand/solvers/Sweep.hpp"
 #include "support/MovingBeam.hpp"
 #include "support/Scenes.hpp"
@@ -75,6 +76,7 @@ struct Modes {
   double maxRealPart = 0.0;
   std::string method;
   double divergenceFactor = 0.0;
+  std::vector<std::string> labels;  // solvers/ModeLabels.hpp
 };
 
 Modes modesOf(const model::SceneDescription& sc, int count) {
@@ -91,7 +93,10 @@ Modes modesOf(const model::SceneDescription& sc, int count) {
     PetscCallAbort(PETSC_COMM_WORLD, s.solve(X, &r));
     PetscCallAbort(PETSC_COMM_WORLD, s.divergenceFactor(&factor));
   }
-  Modes m{r.omega, r.relativeResidual, r.maxRealPart, r.method, factor};
+  Modes m{r.omega, r.relativeResidual, r.maxRealPart, r.method, factor, {}};
+  std::vector<solvers::ModeLabel> labels;
+  PetscCallAbort(PETSC_COMM_WORLD, solvers::labelModes(p.assembler(), X, r, &labels));
+  for (const solvers::ModeLabel& l : labels) m.labels.push_back(l.name);
   solvers::destroyModes(&r);
   VecDestroy(&X);
   return m;
@@ -117,6 +122,7 @@ TEST(AleModes, AxiallyMovingStringHasWickertMoteFrequencies) {
                   m.omega[n - 1] / (2 * M_PI), exact / (2 * M_PI), err, m.residual[n - 1]);
       EXPECT_LT(err, 1e-6) << "v " << v << " mode " << n;
       EXPECT_LT(m.residual[n - 1], 1e-8);
+      EXPECT_EQ(m.labels[n - 1], "bending");  // in the plane, across the span (issue 36 item 4)
     }
   }
 }
@@ -192,6 +198,7 @@ TEST(AleModes, FixedFreeShaftTorsionHasTheClosedFormOfLinearElements) {
       std::printf("%2d  %d  %14.6f  %14.6f  %14.6f  %.3e\n", N, i, m.omega[i - 1] / (2 * M_PI), closed / (2 * M_PI),
                   exact / (2 * M_PI), m.omega[i - 1] / exact - 1.0);
       EXPECT_NEAR(m.omega[i - 1] / closed, 1.0, 1e-9) << "N " << N << " mode " << i;
+      EXPECT_EQ(m.labels[i - 1], "torsion") << "N " << N << " mode " << i;  // issue 36 item 4
     }
   }
 }

@@ -93,9 +93,15 @@ public:
   // Appends `value` to /series/<name>, creating the dataset on first use.
   void writeScalarSeries(const std::string& name, double value);
   // Writes /modes (once per run) and <stem>_modes.xmf; shapes[m] has one entry per body. With
-  // residuals (one per mode): each mode group's attribute `relative_residual`.
+  // residuals (one per mode): each mode group's attribute `relative_residual`; with labels, its
+  // `label` and `label_share` (solvers/ModeLabels.hpp).
+  struct ModeLabelOut {
+    std::string name;
+    double share = 0.0;
+  };
   void writeModes(const std::vector<double>& frequenciesHz,
-                  const std::vector<std::vector<BodyFrame>>& shapes, const std::vector<double>& residuals = {});
+                  const std::vector<std::vector<BodyFrame>>& shapes, const std::vector<double>& residuals = {},
+                  const std::vector<ModeLabelOut>& labels = {});
   // Root-group attributes; an existing attribute of the same name is replaced.
   void setAttribute(const std::string& name, double value);
   void setAttribute(const std::string& name, const std::string& value);
