@@ -4,11 +4,13 @@
   strand_plot.py lines FILE.jsonl -x KEY -y KEY [--group KEY[,KEY]] [--where KEY=VALUE ...]
                  [--slope P] [--loglog] [--title T] [--xlabel L] [--ylabel L] -o OUT.png
 
-  strand_plot.py campbell SWEEP.h5 [--modes N] [--tracked] [--title T] [-o OUT.png]
+  strand_plot.py campbell SWEEP.h5 [--modes N] [--tracked] [--orders K] [--title T] [-o OUT.png]
   strand_plot.py nodes SWEEP.h5 [--modes N] [-o OUT.png]
 
 `campbell` draws the sorted frequency loci omega_bar(parameter) of a `strand sweep` file and marks
-each detected veering (circle, gap and mode shift in the legend) and crossing (cross); --tracked
+each detected veering (circle, gap and mode shift in the legend) and crossing (cross); in a rotating
+sweep it also draws the excitation lines omega = k Omega (k = 1 .. --orders, default 6) that a
+Campbell diagram is read against, and marks and prints where they meet a locus; --tracked
 colours the loci by tracked shape (MAC) instead of by sorted order, which shows the mode shift.
 `nodes` draws the vibration nodes x/L of each mode shape against the parameter.
 `lines` draws one line per distinct value of the group keys, from the records that match every
@@ -104,7 +106,7 @@ def read_sweep(path):
         if "sweep" not in f:
             sys.exit(f"'{path}' has no /sweep group: is it the output of `strand sweep`?")
         g = f["sweep"]
-        d = {k: g[k][()] for k in ("parameter", "omega_bar", "label", "loci_omega_bar", "node_count", "nodes")}
+        d = {k: g[k][()] for k in ("parameter", "gamma", "omega_bar", "label", "loci_omega_bar", "node_count", "nodes")}
         d["events"] = {k: g["events"][k][()] for k in g["events"]}
         d["name"] = f.attrs["parameter"]
         d["name"] = d["name"].decode() if isinstance(d["name"], bytes) else str(d["name"])
@@ -135,6 +137,29 @@ def cmd_campbell(a):
     else:
         for k in range(n):
             ax.plot(p, w[:, k], "-", lw=1.5, label=f"locus {k + 1}")
+    # excitation lines omega = k Omega (k = 1 .. --orders), i.e. omega_bar = k gamma, and their
+    # crossings with the loci: the resonance candidates (printed, and marked with triangles)
+    gamma = d["gamma"]
+    if a.orders > 0 and len(gamma) == len(p) and max(abs(x) for x in gamma) > 0.0:
+        top = max(float(w[:, :n].max()), 1e-300)
+        marked = False
+        for k in range(1, a.orders + 1):
+            line = [k * x for x in gamma]
+            ax.plot(p, line, ":", color="0.45", lw=0.9)
+            i = max(0, min(len(p) - 1, next((j for j in range(len(p)) if line[j] > top), len(p) - 1)))
+            ax.annotate(f"{k}$\\Omega$", (p[i], min(line[i], top)), fontsize=7, color="0.35")
+            for l in range(n):
+                for j in range(len(p) - 1):
+                    f0, f1 = w[j, l] - line[j], w[j + 1, l] - line[j + 1]
+                    if f0 == 0.0 or f0 * f1 < 0.0:
+                        t = f0 / (f0 - f1) if f0 != f1 else 0.0
+                        x = p[j] + t * (p[j + 1] - p[j])
+                        y = w[j, l] + t * (w[j + 1, l] - w[j, l])
+                        ax.plot([x], [y], "^", ms=6, mfc="none", mec="tab:purple", mew=1.2,
+                                label=None if marked else "resonance candidate (k $\\Omega$ meets a locus)")
+                        marked = True
+                        print(f"resonance candidate: locus {l + 1} meets {k} Omega at {d['name']} {x:.6g}, omega_bar {y:.6g}")
+        ax.set_ylim(0.0, 1.05 * top)
     ev = d["events"]
     shown = set()
     for i in range(len(ev.get("kind", []))):
@@ -217,6 +242,7 @@ def main(argv=None):
         c.add_argument("-o", "--output")
         if name == "campbell":
             c.add_argument("--tracked", action="store_true")
+            c.add_argument("--orders", type=int, default=6, help="excitation lines k Omega, k = 1 .. ORDERS (0: none)")
         c.set_defaults(run=fn)
     a = p.parse_args(argv)
     a.run(a)

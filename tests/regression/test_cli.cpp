@@ -286,6 +286,8 @@ TEST(Cli, SweepSceneWritesLociEventsAndCampbellDiagram) {
   auto p = runCommand(strandBinary() + " plot campbell " + out.string() + " -o " + (dir / "c.png").string());
   EXPECT_EQ(p.exitCode, 0) << p.output;
   EXPECT_TRUE(fs::exists(dir / "c.png"));
+  // issue 36 item 4: the excitation lines k Omega and their crossings with the loci
+  EXPECT_NE(p.output.find("resonance candidate: locus 3 meets 4 Omega at gamma 35."), std::string::npos) << p.output;
   auto n = runCommand(strandBinary() + " plot nodes " + out.string());
   EXPECT_EQ(n.exitCode, 0) << n.output;
   EXPECT_TRUE(fs::exists(dir / "veering_nodes.png"));
