@@ -42,6 +42,7 @@ void keepCompletePoints(solvers::SweepResult& r) {
   r.residual.resize(p);
   if (r.nodes.size() > p) r.nodes.resize(p);
   if (r.shapes.size() > p) r.shapes.resize(p);
+  if (r.kind.size() > p) r.kind.resize(p);
   r.macNext.resize(std::min(r.macNext.size(), p > 0 ? p - 1 : 0));
   r.label.clear();
   r.events.clear();

@@ -1,6 +1,7 @@
 // HDF5 + CSV output of a parameter sweep (layout in include/strand/io/SweepWriter.hpp).
 #include "strand/io/SweepWriter.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -62,6 +63,19 @@ void writeHdf5(const std::string& path, const SweepInfo& info, const solvers::Sw
   std::vector<int> label = table(r.label, n, -1);
   label.resize(P * n, -1);  // tracking is skipped when the mode count varied
   writeArray(g.get(), "label", {P, n}, label.data());
+  // what each sorted mode is (ModeLabels.hpp): codes into the attribute kind_names (-1: none)
+  std::vector<std::string> names;
+  std::vector<int> kindCode(P * n, -1);
+  for (size_t i = 0; i < r.kind.size() && i < P; ++i)
+    for (size_t k = 0; k < r.kind[i].size() && k < n; ++k) {
+      const auto it = std::find(names.begin(), names.end(), r.kind[i][k]);
+      kindCode[i * n + k] = static_cast<int>(it - names.begin());
+      if (it == names.end()) names.push_back(r.kind[i][k]);
+    }
+  writeArray(g.get(), "kind", {P, n}, kindCode.data());
+  std::string joined;
+  for (const std::string& s : names) joined += (joined.empty() ? "" : ",") + s;
+  writeAttribute(g.get(), "kind_names", joined);
   std::vector<double> loci;
   for (const auto& l : trackedLoci(r)) loci.insert(loci.end(), l.begin(), l.end());
   writeArray(g.get(), "loci_omega_bar", {loci.empty() ? 0 : n, loci.empty() ? 0 : P}, loci.data());
@@ -140,11 +154,13 @@ void writeCsv(const std::string& path, const std::string& eventsPath, const solv
   csv << "point,parameter,gamma";
   for (size_t k = 0; k < n; ++k) csv << ",omega_bar_" << k + 1;
   for (size_t l = 0; l < loci.size(); ++l) csv << ",locus_" << l + 1;
+  for (size_t k = 0; k < n; ++k) csv << ",kind_" << k + 1;
   csv << "\n";
   for (size_t i = 0; i < r.parameter.size(); ++i) {
     csv << i << "," << r.parameter[i] << "," << r.gamma[i];
     for (size_t k = 0; k < n; ++k) csv << "," << (k < r.omegaBar[i].size() ? r.omegaBar[i][k] : NAN);
     for (const auto& l : loci) csv << "," << l[i];
+    for (size_t k = 0; k < n; ++k) csv << "," << (i < r.kind.size() && k < r.kind[i].size() ? r.kind[i][k] : "");
     csv << "\n";
   }
   std::ofstream ev(eventsPath);

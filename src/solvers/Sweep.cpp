@@ -5,6 +5,7 @@
 
 #include "strand/elements/ElementRegistry.hpp"
 #include "strand/solvers/ModalSolver.hpp"
+#include "strand/solvers/ModeLabels.hpp"
 #include "strand/solvers/Problem.hpp"
 #include "strand/solvers/StaticSolver.hpp"
 
@@ -256,6 +257,10 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
       out->criticalSpeed = s * p;
     }
     out->method = r.method;
+    std::vector<ModeLabel> labels;
+    PetscCall(labelModes(problem->assembler(), X, r, &labels));
+    out->kind.emplace_back();
+    for (const ModeLabel& l : labels) out->kind.back().push_back(l.name);
     out->maxRealPart = std::max(out->maxRealPart, r.maxRealPart);
     out->parameter.push_back(p);
     out->gamma.push_back(omega * T);

@@ -280,7 +280,9 @@ TEST(Cli, SweepSceneWritesLociEventsAndCampbellDiagram) {
       "assert g['omega_bar'].shape==(61,5), g['omega_bar'].shape; assert g['mac'].shape==(60,5,5); "
       "assert g['shapes'].shape==(61,5,17,2), g['shapes'].shape; assert g['loci_omega_bar'].shape==(5,61); "
       "assert list(g['events/kind'][()])==[0]; assert g['events/refined'][0]==1; "
-      "assert f.attrs['status']=='ok'; print('ok')\" " + out.string();
+      "assert f.attrs['status']=='ok'; "
+      "names=g.attrs['kind_names'].split(','); k=g['kind'][()]; assert k.shape==(61,5); "
+      "assert names[k[0][3]]=='axial' and names[k[-1][2]]=='axial', (names, k[0], k[-1]); print('ok')\" " + out.string();
   auto c = runCommand(check);
   EXPECT_EQ(c.exitCode, 0) << c.output;
   auto p = runCommand(strandBinary() + " plot campbell " + out.string() + " -o " + (dir / "c.png").string());

@@ -25,6 +25,7 @@ struct SweepResult {
   std::vector<std::vector<double>> residual;     // relative residual per mode
   std::vector<std::vector<double>> macNext;      // [point][a * count + b], point to point + 1
   std::vector<std::vector<int>> label;           // tracked mode of each sorted mode
+  std::vector<std::vector<std::string>> kind;    // [point][sorted mode]: what it is (solvers/ModeLabels.hpp)
   std::vector<LociEvent> events;                 // veering and crossing
   std::vector<std::vector<std::vector<double>>> nodes;  // [point][mode]: vibration nodes x / L on body 0
   std::vector<std::vector<std::vector<double>>> shapes; // [point][mode]: body-0 node displacements (rank 0)
