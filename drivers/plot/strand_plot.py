@@ -108,6 +108,9 @@ def read_sweep(path):
         g = f["sweep"]
         d = {k: g[k][()] for k in ("parameter", "gamma", "omega_bar", "label", "loci_omega_bar", "node_count", "nodes")}
         d["events"] = {k: g["events"][k][()] for k in g["events"]}
+        names = g.attrs.get("kind_names", "")
+        names = names.decode() if isinstance(names, bytes) else str(names)
+        d["kind"] = [[names.split(",")[c] if c >= 0 else "" for c in row] for row in g["kind"][()]] if "kind" in g else []
         d["name"] = f.attrs["parameter"]
         d["name"] = d["name"].decode() if isinstance(d["name"], bytes) else str(d["name"])
         d["status"] = f.attrs["status"]
@@ -135,8 +138,9 @@ def cmd_campbell(a):
         for l in range(n):
             ax.plot(p, d["loci_omega_bar"][l], "-", lw=1.5, label=f"tracked mode {l + 1}")
     else:
-        for k in range(n):
-            ax.plot(p, w[:, k], "-", lw=1.5, label=f"locus {k + 1}")
+        for k in range(n):  # each locus named by what its mode is at the first point (ModeLabels)
+            kind = d["kind"][0][k] if d["kind"] and k < len(d["kind"][0]) and d["kind"][0][k] else ""
+            ax.plot(p, w[:, k], "-", lw=1.5, label=f"locus {k + 1}" + (f" ({kind})" if kind else ""))
     # excitation lines omega = k Omega (k = 1 .. --orders), i.e. omega_bar = k gamma, and their
     # crossings with the loci: the resonance candidates (printed, and marked with triangles)
     gamma = d["gamma"]
