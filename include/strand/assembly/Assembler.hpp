@@ -2,7 +2,7 @@
 //
 // Gathers element displacements from a ghosted Vec, calls the pure kernels, and scatters residuals
 // and tangents into Vec/Mat. Unknowns are displacements u = q - q0 from the reference shape (see
-// AncfCable.hpp). Convention (docs/architecture.md): everything on the left-hand side,
+// AncfCable.hpp). Convention: everything on the left-hand side,
 //   R(u) = f_int(u, v) - lambda f_ext(u)   (statics: lambda is the load factor),
 // rows of supported DOFs are replaced by u_i with unit diagonal.
 #pragma once

@@ -1,6 +1,6 @@
 // Errors and exit codes shared by every layer.
 //
-// Two kinds of failure, never blurred (docs/architecture.md, "Errors"):
+// Two kinds of failure, never blurred (exit codes: docs/user-guide.md, "The `strand` command"):
 //  - InputError: the user's scene or options are wrong. The message names file, line, key and reason.
 //  - SolveError: a solve diverged. The message names the time or load step and gives a hint.
 // Internal invariants use assert(). Exceptions never cross a PETSc callback: the callbacks catch

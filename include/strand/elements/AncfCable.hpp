@@ -22,7 +22,7 @@
 // Everything below is a function of the pointwise vector G = (r', r'') (2D entries). The element
 // residual and tangent follow by the chain rule with the slot coefficients B1 = dN/dx, B2 = d2N/dx2:
 //   f_a = int (B1_a f_G[r'] + B2_a f_G[r'']) dx,   K_ab = int sum B_a K_G B_b dx.
-// Sign convention (docs/architecture.md): f is the internal force on the left-hand side,
+// Sign convention: f is the internal force on the left-hand side,
 //   M a + f_int(q, v) - f_ext = 0.
 #pragma once
 #include <array>

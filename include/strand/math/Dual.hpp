@@ -1,8 +1,9 @@
 // Forward-mode dual number with N derivative directions.
 //
-// Used only as a test oracle: element forces are templated on the scalar type, and instantiating
-// them with Dual<N> gives the exact Jacobian to compare the hand-derived tangents against
-// (docs/architecture.md, "Tangents"). Production code never instantiates it.
+// Element forces are templated on the scalar type, and instantiating them with Dual<N> gives the
+// exact Jacobian: the tests compare every hand-derived tangent against it, and one production
+// path uses it, the damped ALE kinds' tangent (AleCable.hpp, dualTangent; docs/architecture.md,
+// "Element kinds": why that one is not hand-derived).
 #pragma once
 #include <array>
 #include <cmath>
