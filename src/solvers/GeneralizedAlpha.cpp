@@ -77,7 +77,7 @@ void stageLoop(PetscInt n, StageCoefficients c, const PetscScalar* PETSC_RESTRIC
 //   a1 = (X1 - X0 - h V0 - h^2 (1/2 - beta) a0) / (beta h^2),   V1 = V0 + h ((1 - gamma) a0 + gamma a1),
 //   (1 - alpha_m) a1 + alpha_m a0 = (1 - alpha_f) A1 + alpha_f A0.
 // One loop over the entries: it reads five vectors and writes three once, where a chain of PETSc
-// vector operations made six passes (memory-bound; docs/performance.md, session 17).
+// vector operations made six passes (memory-bound; docs/performance.md, "10^5 elements on two ranks").
 PetscErrorCode stageVectors(TS ts, Vec X1) {
   AlphaData* d = dataOf(ts);
   const PetscReal h = ts->time_step, b = d->beta, g = d->gamma, am = d->alphaM, af = d->alphaF;

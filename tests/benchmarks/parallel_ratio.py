@@ -25,7 +25,7 @@ With --rounds N (first after MPIEXEC; default 5) it alternates the one- and two-
 and ends with a summary line: every ratio, their median and largest, how many are at most the
 target, and "met": whether the median is. The target is read as the median of such rounds: on a
 host whose two cores share a memory bus with other tenants one run's ratio moves by +-0.05
-(docs/performance.md, sessions 15-19), and the runs that lose are the ones whose two ranks got
+(docs/performance.md, "10^5 elements on two ranks"), and the runs that lose are the ones whose two ranks got
 less of the bus, not the ones whose code did more work; the median of alternating rounds is the
 number a repeated measurement converges to, and the summary keeps every ratio so the spread stays
 in view.
