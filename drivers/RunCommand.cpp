@@ -341,6 +341,7 @@ private:
 
   int modes(Vec X, std::string* failure) {
     solvers::ModalResult r;
+    std::vector<solvers::ModeLabel> labels;
     {
       solvers::ModalSolver solver(_problem.assembler(), solvers::modalOptions(_scene.modes));
       const std::string error = guardSolve(_comm, [&] { return solver.solve(X, &r); });
@@ -359,11 +360,10 @@ private:
         if (e.empty()) reportCriticalSpeed(factor);
         else say("note: the divergence speed could not be computed: " + e);
       }
+      const std::string e = guardSolve(
+          _comm, [&] { return solvers::labelModes(_problem.assembler(), solver.massMatrix(), r, &labels); });
+      if (!e.empty()) say("note: the modes could not be labelled: " + e);
     }
-    std::vector<solvers::ModeLabel> labels;
-    if (const std::string e = guardSolve(_comm, [&] { return solvers::labelModes(_problem.assembler(), X, r, &labels); });
-        !e.empty())
-      say("note: the modes could not be labelled: " + e);
     const double T = _problem.model().scales().time();
     std::vector<double> hz;
     std::vector<std::vector<io::BodyFrame>> shapes;

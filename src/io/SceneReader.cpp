@@ -61,14 +61,8 @@ std::string join(const std::vector<std::string>& items) {
 // The kinds with material coordinates (ALE), for messages.
 std::string aleKindNames() {
   std::vector<std::string> names;
-  for (int k = 0; k < elements::kindCount(); ++k) {
-    const elements::KindInfo& info = elements::kindInfo(k);
-    for (int b = 0; b < info.blocksPerNode; ++b)
-      if (elements::isMaterialBlock(info.layout[b])) {
-        names.push_back(info.name);
-        break;
-      }
-  }
+  for (int k = 0; k < elements::kindCount(); ++k)
+    if (elements::kindInfo(k).materialBlock() >= 0) names.push_back(elements::kindInfo(k).name);
   return join(names);
 }
 
@@ -806,8 +800,7 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
     if (!kind.constantMass) masses.fail(std::string("point masses on ") + kind.name + " bodies are not built yet");
     readPointMasses(masses, body);
   }
-  bool ale = false;
-  for (int k = 0; k < kind.blocksPerNode; ++k) ale = ale || elements::isMaterialBlock(kind.layout[k]);
+  const bool ale = kind.materialBlock() >= 0;
   for (const char* key : {"material_motion", "payout", "initial_stretch", "material_nodes"})
     if (const Field k = f.child(key); k.present() && !ale)
       k.fail(std::string(kind.name) + " has no material coordinates (an ALE kind has: " + aleKindNames() + ")");
@@ -1440,9 +1433,7 @@ private:
           load.moment = readMoment(moment, ctx_.dim);
         if (const Field torque = item.child("spin_torque"); torque.present()) {
           const elements::KindInfo& kind = elements::kindInfo(findBody(item.child("body")).kind);
-          bool spin = false;
-          for (int k = 0; k < kind.blocksPerNode; ++k) spin = spin || kind.layout[k] == elements::BlockRole::MaterialSpin;
-          if (!spin) torque.fail(std::string(kind.name) + " has no spin angle (AleBeamShaft3d has)");
+          if (kind.blockWith(elements::BlockRole::MaterialSpin) < 0) torque.fail(std::string(kind.name) + " has no spin angle (AleBeamShaft3d has)");
           load.spinTorque = torque.number();
         }
         if (const Field fn = item.child("function"); fn.present()) {

@@ -41,18 +41,20 @@ std::vector<double> materialNodeArcs(const BodyDesc& bd, int elements, double le
   return arc;
 }
 
-// The motions that move node n's material coordinate and their weights (material_nodes).
-std::vector<std::pair<TimeFunction, double>> materialNodeWeights(const BodyDesc& bd, int elements, int n) {
-  std::vector<std::pair<TimeFunction, double>> out;
+// Per node, the motions that move its material coordinate and their weights (material_nodes;
+// empty without them).
+using MaterialWeights = std::vector<std::vector<std::pair<TimeFunction, double>>>;
+MaterialWeights materialNodeWeights(const BodyDesc& bd, int elements) {
+  MaterialWeights out(elements + 1);
   if (bd.materialNodes.empty()) return out;
   const std::vector<MaterialAnchor> a = materialAnchors(bd, elements, 0.0);
-  for (size_t k = 0; k + 1 < a.size(); ++k) {
-    if (n < a[k].node || n > a[k + 1].node) continue;
-    const double w = static_cast<double>(n - a[k].node) / (a[k + 1].node - a[k].node);
-    if (a[k].desc && a[k].desc->hasMotion && w < 1.0) out.push_back({a[k].desc->motion, 1.0 - w});
-    if (a[k + 1].desc && a[k + 1].desc->hasMotion && w > 0.0) out.push_back({a[k + 1].desc->motion, w});
-    break;
-  }
+  for (size_t k = 0; k + 1 < a.size(); ++k)
+    for (int n = a[k].node; n <= a[k + 1].node; ++n) {
+      if (n == a[k + 1].node && k + 2 < a.size()) break;  // the next interval's first node
+      const double w = static_cast<double>(n - a[k].node) / (a[k + 1].node - a[k].node);
+      if (a[k].desc && a[k].desc->hasMotion && w < 1.0) out[n].push_back({a[k].desc->motion, 1.0 - w});
+      if (a[k + 1].desc && a[k + 1].desc->hasMotion && w > 0.0) out[n].push_back({a[k + 1].desc->motion, w});
+    }
   return out;
 }
 
@@ -154,8 +156,7 @@ void Model::addBodies(Build& build) {
     b.elementLength = b.length / b.elements;
     b.section = bd.section;
     b.properties = info.properties(bd.section);
-    bool ale = false;  // material coordinates: slopes are dr/dp = lambda0 dr/ds (never scaled by l)
-    for (int k = 0; k < info.blocksPerNode; ++k) ale = ale || elements::isMaterialBlock(info.layout[k]);
+    const bool ale = info.materialBlock() >= 0;  // material coordinates: slopes are dr/dp = lambda0 dr/ds (never scaled by l)
     b.discretization = {b.elementLength,
                         ale ? bd.initialStretch : scene.discretization.slopeScaling ? b.elementLength : 1.0,
                         scene.discretization.gaussPoints};
@@ -380,20 +381,19 @@ void Model::addSupports(Build& build) {
   // too, or it follows the body's material_motion (a prescribed coordinate)
   for (size_t bi = 0; bi < _bodies.size(); ++bi) {
     const Body& b = _bodies[bi];
-    for (int k = 0; k < b.blocksPerNode; ++k) {
-      if (!elements::isMaterialBlock(b.info().layout[k])) continue;
-      for (int n = 0; n <= b.elements; ++n) {
-        const int dof = b.block(n, k) * _dim;
-        _fixed[dof] = 1;
-        for (int i = elements::usedComponents(b.info().layout[k], _dim); i < _dim; ++i) _fixed[dof + i] = 1;
-        if (scene.bodies[bi].hasMaterialMotion) _prescribed.push_back({dof, scene.bodies[bi].materialMotion, 1.0});
-        if (scene.bodies[bi].hasPayout && n < b.elements)  // equal spacing: node n moves by -(N - n)/N of it
-          _prescribed.push_back({dof, scene.bodies[bi].payout, -static_cast<double>(b.elements - n) / b.elements});
-        // material_nodes: a listed node moves by its motion; the ones between two listed nodes a < n < c
-        // by (1 - w) of a's and w of c's, w = (n - a) / (c - a) (equal spacing, Eq. 51)
-        for (const auto& [function, scale] : materialNodeWeights(scene.bodies[bi], b.elements, n))
-          _prescribed.push_back({dof, function, scale});
-      }
+    const int k = b.info().materialBlock();
+    if (k < 0) continue;
+    const MaterialWeights weights = materialNodeWeights(scene.bodies[bi], b.elements);
+    for (int n = 0; n <= b.elements; ++n) {
+      const int dof = b.block(n, k) * _dim;
+      _fixed[dof] = 1;
+      for (int i = elements::usedComponents(b.info().layout[k], _dim); i < _dim; ++i) _fixed[dof + i] = 1;
+      if (scene.bodies[bi].hasMaterialMotion) _prescribed.push_back({dof, scene.bodies[bi].materialMotion, 1.0});
+      if (scene.bodies[bi].hasPayout && n < b.elements)  // equal spacing: node n moves by -(N - n)/N of it
+        _prescribed.push_back({dof, scene.bodies[bi].payout, -static_cast<double>(b.elements - n) / b.elements});
+      // material_nodes: a listed node moves by its motion; the ones between two listed nodes a < n < c
+      // by (1 - w) of a's and w of c's, w = (n - a) / (c - a) (equal spacing, Eq. 51)
+      for (const auto& [function, scale] : weights[n]) _prescribed.push_back({dof, function, scale});
     }
   }
   // clamped: the position and the orientation block (the cable's slope, a beam's cross-section
@@ -431,9 +431,8 @@ void Model::addLoads(Build& build) {
     const int n = nodeIndex(l.at, b);
     // a torque about the centerline is the generalized force on the spin angle (component 1 of the
     // MaterialSpin block): its virtual work is T delta theta (seed 000 Eq. 45-46)
-    int spinDof = -1;
-    for (int k = 0; k < b.blocksPerNode; ++k)
-      if (b.info().layout[k] == elements::BlockRole::MaterialSpin) spinDof = b.block(n, k) * _dim + 1;
+    const int spinBlock = b.info().blockWith(elements::BlockRole::MaterialSpin);
+    const int spinDof = spinBlock < 0 ? -1 : b.block(n, spinBlock) * _dim + 1;
     if (l.timed) {
       TimedLoad t{l.function, {}, {}};
       for (int i = 0; i < _dim; ++i) {
@@ -519,16 +518,12 @@ void Model::addInitialVelocities(Build& build) {
   for (size_t bi = 0; bi < scene.bodies.size(); ++bi) {
     const Body& b = _bodies[bi];
     if (scene.bodies[bi].materialNodes.empty()) continue;
-    int materialBlock = -1, slopeBlock = -1;
-    for (int k = 0; k < b.blocksPerNode; ++k) {
-      if (elements::isMaterialBlock(b.info().layout[k])) materialBlock = k;
-      if (b.info().layout[k] == elements::BlockRole::AxialGradient) slopeBlock = k;
-    }
-    if (materialBlock < 0 || slopeBlock < 0) continue;
+    const int slopeBlock = b.info().blockWith(elements::BlockRole::AxialGradient);
+    if (b.info().materialBlock() < 0 || slopeBlock < 0) continue;
+    const MaterialWeights weights = materialNodeWeights(scene.bodies[bi], b.elements);
     for (int n = 0; n <= b.elements; ++n) {
       double pdot = 0.0;
-      for (const auto& [function, scale] : materialNodeWeights(scene.bodies[bi], b.elements, n))
-        pdot += scale * function.at(0.0).df;
+      for (const auto& [function, scale] : weights[n]) pdot += scale * function.at(0.0).df;
       for (int i = 0; i < _dim; ++i)
         _v0[b.posBlock[n] * _dim + i] += _q0[b.block(n, slopeBlock) * _dim + i] * pdot;
     }

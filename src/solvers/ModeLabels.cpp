@@ -70,7 +70,7 @@ std::vector<Direction> directions(const model::Model& m) {
 
 }  // namespace
 
-PetscErrorCode labelModes(assembly::Assembler& assembler, Vec X, const ModalResult& result,
+PetscErrorCode labelModes(assembly::Assembler& assembler, Mat M, const ModalResult& result,
                           std::vector<ModeLabel>* labels) {
   PetscFunctionBeginUser;
   labels->assign(result.omega.size(), ModeLabel{});
@@ -79,10 +79,7 @@ PetscErrorCode labelModes(assembly::Assembler& assembler, Vec X, const ModalResu
   const int D = m.dim();
   const std::vector<Direction> dirs = directions(m);
   const int parts = static_cast<int>(dirs.size()) + 1;  // + the spin angles ("torsion")
-  Mat M;
   Vec part, Mpart;
-  PetscCall(assembler.dofs().createMatrix(&M, "labels_", MATAIJ));
-  PetscCall(assembler.massMatrixAt(X, M));
   PetscCall(assembler.dofs().createVector(&part));
   PetscCall(VecDuplicate(part, &Mpart));
   for (size_t k = 0; k < result.omega.size(); ++k) {
@@ -128,7 +125,6 @@ PetscErrorCode labelModes(assembly::Assembler& assembler, Vec X, const ModalResu
   }
   PetscCall(VecDestroy(&part));
   PetscCall(VecDestroy(&Mpart));
-  PetscCall(MatDestroy(&M));
   PetscFunctionReturn(0);
 }
 

@@ -258,7 +258,7 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
     }
     out->method = r.method;
     std::vector<ModeLabel> labels;
-    PetscCall(labelModes(problem->assembler(), X, r, &labels));
+    PetscCall(labelModes(problem->assembler(), modal->massMatrix(), r, &labels));
     out->kind.emplace_back();
     for (const ModeLabel& l : labels) out->kind.back().push_back(l.name);
     out->maxRealPart = std::max(out->maxRealPart, r.maxRealPart);

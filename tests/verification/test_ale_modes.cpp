@@ -88,14 +88,14 @@ Modes modesOf(const model::SceneDescription& sc, int count) {
   opt.count = count;
   solvers::ModalResult r;
   double factor = 0.0;
+  std::vector<solvers::ModeLabel> labels;
   {
     solvers::ModalSolver s(p.assembler(), opt);
     PetscCallAbort(PETSC_COMM_WORLD, s.solve(X, &r));
     PetscCallAbort(PETSC_COMM_WORLD, s.divergenceFactor(&factor));
+    PetscCallAbort(PETSC_COMM_WORLD, solvers::labelModes(p.assembler(), s.massMatrix(), r, &labels));
   }
   Modes m{r.omega, r.relativeResidual, r.maxRealPart, r.method, factor, {}};
-  std::vector<solvers::ModeLabel> labels;
-  PetscCallAbort(PETSC_COMM_WORLD, solvers::labelModes(p.assembler(), X, r, &labels));
   for (const solvers::ModeLabel& l : labels) m.labels.push_back(l.name);
   solvers::destroyModes(&r);
   VecDestroy(&X);

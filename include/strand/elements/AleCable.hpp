@@ -60,14 +60,9 @@ public:
   static constexpr int kOrientationBlock = 1;
   static constexpr bool kStressFreeInitial = false;
   static constexpr bool kConstantMass = false;  // M(q): the inertia is the element's (inertia, inertiaTangent)
-  static constexpr SectionKey kSectionKeys[] = {
-      {"E", "Young's modulus [Pa]", true, 0.0, 0.0, false, kNoLimit},
-      {"A", "cross-section area [m^2]", true, 0.0, 0.0, false, kNoLimit},
-      {"I", "second moment of area [m^4]", true, 0.0, 0.0, false, kNoLimit},
-      {"rho", "density [kg/m^3]", true, 0.0, 0.0, false, kNoLimit},
-      {"damping_axial", "Kelvin-Voigt coefficient on the material's axial strain rate [s]", false, 0.0, 0.0, true, kNoLimit},
-      {"damping_bending", "Kelvin-Voigt coefficient on the material's curvature rate [s]", false, 0.0, 0.0, true, kNoLimit},
-  };
+  // the cable's keys: E, A, I, rho and the Kelvin-Voigt coefficients (here on the material's rates)
+  static constexpr const auto& kSectionKeys = AncfCable<D>::kSectionKeys;
+
   static constexpr int kOptionCount = 0;
   static constexpr OptionKey kOptions[1] = {{nullptr, nullptr, {nullptr}}};
 

@@ -33,6 +33,17 @@ struct KindInfo {
   std::vector<double> (*referenceValues)(const SectionValues&, const BodyDiscretization&, const double* q0,
                                          int elements) = nullptr;
   int blocksPerElement() const { return 2 * blocksPerNode; }
+  // The node block with this role (-1: none); the block holding a material coordinate (ALE kinds).
+  int blockWith(BlockRole role) const {
+    for (int k = 0; k < blocksPerNode; ++k)
+      if (layout[k] == role) return k;
+    return -1;
+  }
+  int materialBlock() const {
+    for (int k = 0; k < blocksPerNode; ++k)
+      if (isMaterialBlock(layout[k])) return k;
+    return -1;
+  }
 };
 
 int kindCount();

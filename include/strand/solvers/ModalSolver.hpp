@@ -67,6 +67,8 @@ public:
   // K_e + s^2 K_q loses definiteness; +inf when it never does). The critical transport speed is
   // s times the current one.
   bool transport() const { return _transport; }
+  // The full mass matrix of the last solve, M(X) (supported rows and columns zero).
+  Mat massMatrix() const { return _M; }
   PetscErrorCode divergenceFactor(double* factor);
 
 private:

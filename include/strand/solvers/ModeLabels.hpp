@@ -22,8 +22,9 @@ struct ModeLabel {
   double share = 0.0;  // that share of the kinetic energy (1 for rigid)
 };
 
-// Labels of the modes in `result` about the state X (collective).
-PetscErrorCode labelModes(assembly::Assembler& assembler, Vec X, const ModalResult& result,
+// Labels of the modes in `result`; M is the mass matrix they were computed with
+// (ModalSolver::massMatrix). Collective.
+PetscErrorCode labelModes(assembly::Assembler& assembler, Mat M, const ModalResult& result,
                           std::vector<ModeLabel>* labels);
 
 }  // namespace strand::solvers
