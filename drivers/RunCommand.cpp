@@ -189,11 +189,13 @@ private:
       lastStep = s.step;
       lastFactor = s.loadFactor;
       _progress.update("load step " + std::to_string(s.step) + "  load factor " + fmt("%.4f", s.loadFactor) +
-                       "  Newton " + std::to_string(s.newtonIterations) + "  |R| " + fmt("%.2e", s.residualNorm));
+                       "  Newton " + std::to_string(s.newtonIterations) + "  |R| " + fmt("%.2e", s.residualNorm) +
+                       "  e/e1 " + fmt("%.1e", s.energyRatio));
       PetscCallCXX(writeFrame(Xs, s.loadFactor));
       PetscCallCXX(_writer->writeScalarSeries("load_factor", s.loadFactor));
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
       PetscCallCXX(_writer->writeScalarSeries("residual_norm", s.residualNorm));
+      PetscCallCXX(_writer->writeScalarSeries("newton_energy_ratio", s.energyRatio));
       PetscFunctionReturn(0);
     };
     const std::string error = guardSolve(_comm, [&] { return solver.solve(X, onStep, failure); });

@@ -449,6 +449,7 @@ const Choice<model::JointType> kJointTypes[] = {{"pin", model::JointType::Pin},
                                                  {"distance", model::JointType::Distance},
                                                  {"clamp", model::JointType::Clamp}};
 const Choice<model::SupportType> kSupportTypes[] = {{"clamped", model::SupportType::Clamped},
+                                                    {"clamped_unstretched", model::SupportType::ClampedUnstretched},
                                                     {"pinned", model::SupportType::Pinned},
                                                     {"fixed", model::SupportType::Fixed}};
 

@@ -350,8 +350,78 @@ void Model::placeInitialState(Build& build) {
   }
 }
 
+// A clamp on a cable-like kind (whose orientation block is the slope r_x) holds the slope's
+// direction and leaves its length, the axial stretch at the support, free: a rotating beam's root
+// carries the centrifugal tension, a rod's root the end load (issue 36: holding the length forced
+// zero root strain, 2.5 % on a chordwise frequency at 26 % strain). A beam's cross-section vector
+// (shear kinds) is held whole, as is a clamp a hub turns (the direction would turn with time).
+bool Model::clampsSlopeDirection(const SupportDesc& s, const Body& b) const {
+  return s.type == SupportType::Clamped && !s.hub.present &&
+         b.info().layout[b.info().orientationBlock] == elements::BlockRole::AxialGradient;
+}
+
+// The unit normals of the direction t (2D: one, 3D: two, orthonormal).
+std::vector<Vec3> Model::normalsOf(const Vec3& t) const {
+  if (_dim == 2) return {{-t[1], t[0], 0.0}};
+  const int k0 = std::fabs(t[0]) < 0.9 ? 0 : 1;  // a helper axis not parallel to t
+  Vec3 e{};
+  e[k0] = 1.0;
+  Vec3 n1{t[1] * e[2] - t[2] * e[1], t[2] * e[0] - t[0] * e[2], t[0] * e[1] - t[1] * e[0]};
+  const double l1 = std::sqrt(n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]);
+  for (double& x : n1) x /= l1;
+  return {n1, {t[1] * n1[2] - t[2] * n1[1], t[2] * n1[0] - t[0] * n1[2], t[0] * n1[1] - t[1] * n1[0]}};
+}
+
+// For each support that holds a slope's direction (clampsSlopeDirection): along a coordinate axis
+// the slope's other components are held (returned per support, eliminated like any fixed
+// coordinate); along any other direction t the equations r_x . n = 0 for t's normals n hold it,
+// with multipliers (a joint of dim - 1 equations on the slope block, appended to _joints).
+std::vector<std::vector<int>> Model::addClampDirectionJoints(Build& build) {
+  const SceneDescription& scene = build.scene;
+  std::vector<std::vector<int>> held(scene.supports.size());
+  for (size_t si = 0; si < scene.supports.size(); ++si) {
+    const SupportDesc& s = scene.supports[si];
+    const Body& b = build.body(_bodies, s.at.body, s.at.mark);
+    if (!clampsSlopeDirection(s, b)) continue;
+    const int ob = b.orientationBlock(nodeIndex(s.at, b));
+    Vec3 t{};
+    double len = 0.0;
+    for (int i = 0; i < _dim; ++i) len += _q0[ob * _dim + i] * _q0[ob * _dim + i];
+    len = std::sqrt(len);
+    if (!(len > 0.0)) throw InputError(s.mark.where() + ": the clamped node's slope is zero; it has no direction to hold");
+    int along = 0, nonzero = 0;
+    for (int i = 0; i < _dim; ++i) {
+      t[i] = _q0[ob * _dim + i] / len;
+      if (std::fabs(t[i]) > 1e-14) ++nonzero, along = i;
+    }
+    if (nonzero == 1) {
+      for (int i = 0; i < _dim; ++i)
+        if (i != along) held[si].push_back(i);
+      continue;
+    }
+    Joint j;
+    j.label = s.mark.where() + " (clamped: slope direction)";
+    j.count = _dim - 1;
+    j.blocks = {ob};
+    j.lambdaBlocks = {_numBlocks++};
+    for (const Vec3& nrm : normalsOf(t)) {
+      elements::ConstraintEq o;
+      o.form = elements::ConstraintForm::Orthogonal;
+      o.a.kind = elements::JointField::Kind::Block;
+      o.a.block = 0;
+      o.b.kind = elements::JointField::Kind::Constant;
+      o.b.c = nrm;
+      j.equations.push_back(o);
+    }
+    _joints.push_back(std::move(j));
+  }
+  _q0.resize(numDofs(), 0.0);
+  return held;
+}
+
 void Model::addSupports(Build& build) {
   const SceneDescription& scene = build.scene;
+  const std::vector<std::vector<int>> heldSlopes = addClampDirectionJoints(build);
   _fixed.assign(numDofs(), 0);
   _multiplier.assign(numDofs(), 0);
   for (size_t r = 0; r < _rigid.size(); ++r) {
@@ -396,21 +466,27 @@ void Model::addSupports(Build& build) {
       for (const auto& [function, scale] : weights[n]) _prescribed.push_back({dof, function, scale});
     }
   }
-  // clamped: the position and the orientation block (the cable's slope, a beam's cross-section
-  // vector); pinned: the position; fixed: the listed node coordinates, block by block
-  for (const SupportDesc& s : scene.supports) {
+  // clamped: the position and the orientation block's direction (a cable's slope: its length, the
+  // axial stretch, stays free; addClampDirectionJoints) or the whole block (a beam's cross-section
+  // vector, a clamp on a hub; clamped_unstretched); pinned: the position; fixed: the listed node
+  // coordinates, block by block
+  for (size_t si = 0; si < scene.supports.size(); ++si) {
+    const SupportDesc& s = scene.supports[si];
     const Body& b = build.body(_bodies, s.at.body, s.at.mark);
     const int n = nodeIndex(s.at, b);
     const int pb = b.posBlock[n], ob = b.orientationBlock(n);
+    const bool wholeOrientation = s.type == SupportType::ClampedUnstretched ||
+                                  (s.type == SupportType::Clamped && !clampsSlopeDirection(s, b));
     for (int i = 0; i < _dim; ++i) {
-      if (s.type == SupportType::Clamped || s.type == SupportType::Pinned) _fixed[pb * _dim + i] = 1;
-      if (s.type == SupportType::Clamped) _fixed[ob * _dim + i] = 1;
+      if (s.type != SupportType::Fixed) _fixed[pb * _dim + i] = 1;
+      if (wholeOrientation) _fixed[ob * _dim + i] = 1;
     }
+    for (int c : heldSlopes[si]) _fixed[ob * _dim + c] = 1;
     if (s.type == SupportType::Fixed)
       for (int c : s.dofs) _fixed[b.block(n, c / _dim) * _dim + c % _dim] = 1;
     if (s.hub.present) {
       HubMotion h{s.hub.center, s.hub.axis, s.hub.angle, {pb}, {0}};
-      if (s.type == SupportType::Clamped) {
+      if (wholeOrientation) {
         h.blocks.push_back(ob);
         h.slope.push_back(1);
       }
@@ -591,20 +667,7 @@ void Model::addJointEquations(Build& build) {
       double len = 0.0;
       for (int i = 0; i < _dim; ++i) len += _q0[slope * _dim + i] * _q0[slope * _dim + i];
       for (int i = 0; i < _dim; ++i) t[i] = _q0[slope * _dim + i] / std::sqrt(len);
-      std::vector<Vec3> normals;
-      if (_dim == 2) {
-        normals.push_back({-t[1], t[0], 0.0});
-      } else {
-        const int k0 = std::fabs(t[0]) < 0.9 ? 0 : 1;  // a helper axis not parallel to t
-        Vec3 e{};
-        e[k0] = 1.0;
-        Vec3 n1{t[1] * e[2] - t[2] * e[1], t[2] * e[0] - t[0] * e[2], t[0] * e[1] - t[1] * e[0]};
-        const double l1 = std::sqrt(n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]);
-        for (double& x : n1) x /= l1;
-        normals.push_back(n1);
-        normals.push_back({t[1] * n1[2] - t[2] * n1[1], t[2] * n1[0] - t[0] * n1[2], t[0] * n1[1] - t[1] * n1[0]});
-      }
-      for (const Vec3& nrm : normals) {
+      for (const Vec3& nrm : normalsOf(t)) {
         elements::ConstraintEq o;
         o.form = elements::ConstraintForm::Orthogonal;
         o.a.kind = elements::JointField::Kind::Block;

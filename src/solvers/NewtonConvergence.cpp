@@ -35,6 +35,24 @@ namespace strand::solvers {
 //    fixed fraction of the discretization error at every h. The ratio theta of the corrections
 //    cannot be trusted for this: du_1 is dominated by components the kept matrix removes at once,
 //    so theta = |du_2|/|du_1| was 0.003 while the slowest component contracted at 0.28.
+//
+// Statics (NewtonFloor::energyTest) stops on the energy of the correction instead, e_k =
+// |du_k . R_{k-1}| = du_k^T J du_k (Bathe, "Finite Element Procedures" 1996, sec. 8.4.4, the energy
+// criterion), relative to the first, e_1 = the linear work of the load increment, or to the strain
+// energy U when that is larger (a load step that hardly changes the state, a sweep point started
+// from a good predictor: e_1 is then round-off itself, and relative to it nothing converges). e is the squared
+// error of q_{k-1} in the tangent's energy norm, which weighs a stiff direction by its stiffness:
+// for a cantilever elastica with EA L^2/EI = 1e10 the step test accepted an iterate 2.4e-4 L from
+// the converged tip after a tiny axial correction (|du| 1e-9) that followed a bending correction
+// with e = 5e-5 J; the residual there was 1e3 N from axial strain alone. Newton on such a beam
+// alternates bending corrections (which stretch it, e up) and axial ones (e down), so neither |R| nor
+// |du| nor their ratio falls monotonically, while e_k falls quadratically once the iterate is close:
+// e_k / e_1 = 1e-5, 1e-12, 1e-17 at EA L^2/EI = 1e10. Its round-off floor, where R is the noise of
+// the internal forces and du = J^-1 R, was 1e-22 e_1 there (64 elements); energyTolerance 1e-20
+// asks for an error 1e-10 of the increment's displacement. When e stalls above that (more
+// elements, a worse-conditioned tangent), e_k > e_{k-1} / 4 with e_k <= floorTolerance e_ref (1e-12,
+// an error 1e-6 of the increment) is taken as the floor. Either way the achieved e_k / e_1 is
+// reported (StaticStep::energyRatio, e_k / e_ref).
 namespace {
 
 // For a correction du_it (|du_it| = snorm) from a kept matrix: is it at most keptTolerance |du_1|?
@@ -53,6 +71,14 @@ bool keptMatrixConverged(const NewtonFloor& floor, PetscInt it, PetscReal snorm,
   return !floor.keptMatrix || floor.keptTolerance <= 0.0 || snorm <= std::max(floor.keptTolerance * firstStep, roundoff);
 }
 
+// The energy test (statics) after the correction of iteration it.
+bool energyConverged(const NewtonFloor& floor, PetscInt it) {
+  const PetscReal reference = floor.energyReference();
+  if (floor.energyIteration != it || it < 1 || reference <= 0.0) return false;
+  if (floor.energy <= floor.energyTolerance * reference) return true;
+  return it >= 2 && floor.energy <= floor.floorTolerance * reference && floor.energy > 0.25 * floor.previousEnergy;
+}
+
 // The step test: after the correction du_it (|du_it| = snorm, the one before: previousStep), is the
 // error left below stol max(|u|, |q0|), and, for a kept matrix, is keptMatrixConverged?
 bool stepConverged(const NewtonFloor& floor, PetscInt it, PetscReal previousStep, PetscReal snorm, PetscReal xnorm,
@@ -62,17 +88,19 @@ bool stepConverged(const NewtonFloor& floor, PetscInt it, PetscReal previousStep
   return it > 0 && keptMatrixConverged(floor, it, snorm, xnorm) && error < stol * std::max(xnorm, floor.coordinateNorm);
 }
 
-// u -= lambda du and the sums of squares of both; with an offset p (NewtonFloor::offset, X_a - u
+// u -= lambda du and the sums of squares of both, and du . r (r: the residual at u before the step);
+// with an offset p (NewtonFloor::offset, X_a - u
 // before the correction) also p += lambda du and its sum of squares. restrict (distinct vectors)
 // lets the compiler vectorize it.
 template <bool withOffset>
 void stepLoop(PetscInt n, PetscReal lambda, PetscScalar* PETSC_RESTRICT u, const PetscScalar* PETSC_RESTRICT du,
-              PetscScalar* PETSC_RESTRICT p, PetscReal sums[3]) {
-  PetscReal uu = 0.0, dd = 0.0, pp = 0.0;
+              const PetscScalar* PETSC_RESTRICT r, PetscScalar* PETSC_RESTRICT p, PetscReal sums[4]) {
+  PetscReal uu = 0.0, dd = 0.0, pp = 0.0, dr = 0.0;
   for (PetscInt i = 0; i < n; ++i) {
     u[i] -= lambda * du[i];
     uu += PetscRealPart(u[i] * PetscConj(u[i]));
     dd += PetscRealPart(du[i] * PetscConj(du[i]));
+    dr += PetscRealPart(du[i] * PetscConj(r[i]));
     if constexpr (withOffset) {
       p[i] += lambda * du[i];
       pp += PetscRealPart(p[i] * PetscConj(p[i]));
@@ -81,36 +109,41 @@ void stepLoop(PetscInt n, PetscReal lambda, PetscScalar* PETSC_RESTRICT u, const
   sums[0] = uu;
   sums[1] = dd;
   sums[2] = pp;
+  sums[3] = dr;
 }
 
-// X -= lambda Y in place, and |X|, |Y| (2-norms) from the same pass (memory-bound: SNES's basic
+// X -= lambda Y in place, and |X|, |Y| (2-norms) and *energy = lambda |Y . F| from the same pass (memory-bound: SNES's basic
 // line search writes W = X - lambda Y, reads both for the norms and copies W back to X). With an
 // offset (X_a - X before the step; null: none) also offset += lambda Y and *offsetNorm = |offset|,
 // |X_a - X| of the new iterate, in that pass and reduction.
-PetscErrorCode updateInPlace(Vec X, Vec Y, PetscReal lambda, Vec offset, PetscReal* xnorm, PetscReal* ynorm,
-                             PetscReal* offsetNorm) {
+PetscErrorCode updateInPlace(Vec X, Vec Y, Vec F, PetscReal lambda, Vec offset, PetscReal* xnorm, PetscReal* ynorm,
+                             PetscReal* offsetNorm, PetscReal* energy) {
   PetscInt n;
   PetscScalar *x, *p = nullptr;
-  const PetscScalar* y;
+  const PetscScalar *y, *f;
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(X, &n));
   PetscCall(VecGetArray(X, &x));
   PetscCall(VecGetArrayRead(Y, &y));
-  PetscReal sums[3], global[3];
+  PetscCall(VecGetArrayRead(F, &f));
+  PetscReal sums[4], global[4];
   if (offset) {
     PetscCall(VecGetArray(offset, &p));
-    stepLoop<true>(n, lambda, x, y, p, sums);
+    stepLoop<true>(n, lambda, x, y, f, p, sums);
     PetscCall(VecRestoreArray(offset, &p));
   } else {
-    stepLoop<false>(n, lambda, x, y, nullptr, sums);
+    stepLoop<false>(n, lambda, x, y, f, nullptr, sums);
   }
-  PetscCall(PetscLogFlops((offset ? 9.0 : 6.0) * n));
+  PetscCall(PetscLogFlops((offset ? 11.0 : 8.0) * n));
+  PetscCall(VecRestoreArrayRead(F, &f));
   PetscCall(VecRestoreArrayRead(Y, &y));
   PetscCall(VecRestoreArray(X, &x));
-  PetscCallMPI(MPI_Allreduce(sums, global, offset ? 3 : 2, MPIU_REAL, MPIU_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(X))));
+  if (!offset) sums[2] = sums[3];
+  PetscCallMPI(MPI_Allreduce(sums, global, offset ? 4 : 3, MPIU_REAL, MPIU_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(X))));
   *xnorm = std::sqrt(global[0]);
   *ynorm = std::sqrt(global[1]);
   if (offset) *offsetNorm = std::sqrt(global[2]);
+  *energy = std::abs(lambda * (offset ? global[3] : global[2]));
   PetscFunctionReturn(0);
 }
 
@@ -129,12 +162,21 @@ PetscErrorCode fullStep(SNESLineSearch ls, void* ctx) {
   PetscCall(SNESLineSearchGetNorms(ls, &xnorm, &fnorm, &ynorm));
   PetscCall(SNESLineSearchGetLambda(ls, &lambda));
   PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_SUCCEEDED));
-  PetscCall(updateInPlace(X, Y, lambda, floor->offset, &xnorm, &ynorm, &floor->offsetStep));
+  PetscReal energy = 0.0;
+  PetscCall(updateInPlace(X, Y, F, lambda, floor->offset, &xnorm, &ynorm, &floor->offsetStep, &energy));
   PetscCall(SNESGetIterationNumber(snes, &it));
   PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
+  if (floor->energyTest) {  // the correction of iteration it + 1
+    floor->previousEnergy = it == 0 ? 0.0 : floor->energy;
+    floor->energy = energy;
+    if (it == 0) floor->firstEnergy = energy;
+    floor->energyIteration = it + 1;
+  }
   // the test of iteration it + 1 sees |R| of this iterate (fnorm <= fnorm0 lets it accept)
-  const bool accepted = floor->iteration == it && floor->fnorm <= floor->fnorm0 &&
-                        stepConverged(*floor, it + 1, floor->step, ynorm, xnorm, stol);
+  const bool accepted = floor->energyTest
+                            ? energyConverged(*floor, it + 1)
+                            : floor->iteration == it && floor->fnorm <= floor->fnorm0 &&
+                                  stepConverged(*floor, it + 1, floor->step, ynorm, xnorm, stol);
   if (!accepted) {
     PetscBool domainError;
     PetscCall(SNESComputeFunction(snes, X, F));
@@ -178,6 +220,14 @@ PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm,
   floor->fnorm = fnorm;
   floor->iteration = it;
   PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
+  if (floor->energyTest && floor->energyIteration >= 0) {
+    // statics with this file's line search: the residual tests, the energy test, never the step test
+    if (it == 0) floor->energyIteration = -1;
+    if (*reason == SNES_CONVERGED_SNORM_RELATIVE) *reason = SNES_CONVERGED_ITERATING;
+    if (*reason == SNES_CONVERGED_ITERATING && energyConverged(*floor, it)) *reason = SNES_CONVERGED_SNORM_RELATIVE;
+    if (!std::isfinite(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;
+    PetscFunctionReturn(0);
+  }
   PetscReal stol;
   PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
   if (*reason == SNES_CONVERGED_ITERATING && stepConverged(*floor, it, floor->previousStep, snorm, xnorm, stol))

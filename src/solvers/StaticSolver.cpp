@@ -41,6 +41,7 @@ StaticSolver::StaticSolver(assembly::Assembler& assembler, int loadSteps) : _asm
   // steps of 1e-3 (measured on the elastica tests). Robustness comes from load-step cutbacks.
   PetscCallAbort(dofs.comm(), SNESSetDivergenceTolerance(_snes, -1.0));
   _floor.coordinateNorm = assembler.coordinateNorm();
+  _floor.energyTest = true;  // converged means converged for any EA/EI (NewtonConvergence.cpp)
   PetscCallAbort(dofs.comm(), SNESSetConvergenceTest(_snes, roundoffFloorConvergence, &_floor, nullptr));
   PetscCallAbort(dofs.comm(), useFullNewtonStep(_snes, &_floor));  // no residual the step test discards
   KSP ksp;
@@ -57,6 +58,7 @@ StaticSolver::~StaticSolver() {
 PetscErrorCode StaticSolver::setFromOptions() {
   PetscFunctionBeginUser;
   PetscCall(SNESSetFromOptions(_snes));
+  PetscCall(PetscOptionsGetReal(nullptr, "static_", "-newton_energy_rtol", &_floor.energyTolerance, nullptr));
   PetscFunctionReturn(0);
 }
 
@@ -92,6 +94,7 @@ PetscErrorCode StaticSolver::solve(Vec X, const StepCallback& onStep, std::strin
   _stopped = false;
   while (lambda < 1.0 - 1e-14) {
     _loadFactor = std::min(1.0, lambda + increment);
+    PetscCall(_asm.strainEnergy(X, &_floor.energyScale));  // the energy test's scale (NewtonFloor)
     PetscCall(SNESSolve(_snes, nullptr, X));
     SNESConvergedReason reason;
     PetscCall(SNESGetConvergedReason(_snes, &reason));
@@ -102,6 +105,7 @@ PetscErrorCode StaticSolver::solve(Vec X, const StepCallback& onStep, std::strin
       info.loadFactor = lambda;
       PetscCall(SNESGetIterationNumber(_snes, &info.newtonIterations));
       PetscCall(SNESGetFunctionNorm(_snes, &info.residualNorm));
+      info.energyRatio = _floor.energyIteration >= 0 ? _floor.energyRatio() : -1.0;
       PetscCall(VecCopy(X, accepted));
       if (onStep) PetscCall(onStep(info, X));
       cutbacks = 0;

@@ -181,6 +181,9 @@ private:
   void addRigidBodiesAndMultipliers(Build& b);
   void placeInitialState(Build& b);
   void addSupports(Build& b);
+  bool clampsSlopeDirection(const SupportDesc& s, const Body& b) const;
+  std::vector<Vec3> normalsOf(const Vec3& t) const;
+  std::vector<std::vector<int>> addClampDirectionJoints(Build& b);
   void addLoads(Build& b);
   void addInitialVelocities(Build& b);
   void addJointEquations(Build& b);

@@ -110,7 +110,11 @@ struct HubDesc {
   SourceMark mark;
 };
 
-enum class SupportType { Clamped, Pinned, Fixed };
+// clamped: position and the orientation's direction (a cable's slope keeps its direction, its
+// length, the axial stretch, is free; a shear beam's cross-section vector is held whole);
+// clamped_unstretched: position and the whole orientation block (zero axial strain at the node);
+// pinned: position; fixed: listed coordinates.
+enum class SupportType { Clamped, ClampedUnstretched, Pinned, Fixed };
 struct SupportDesc {
   NodeRef at;
   SupportType type = SupportType::Clamped;

@@ -3,6 +3,8 @@
 #pragma once
 #include <petscsnes.h>
 
+#include <algorithm>
+
 namespace strand::solvers {
 
 // Context of roundoffFloorConvergence: |R| at the first iterate, |q0| (the norm of the reference
@@ -26,6 +28,21 @@ struct NewtonFloor {
   // (offsetStep: |X_k - X_a|, -1 if there is none or another line search runs.)
   Vec offset = nullptr;
   PetscReal offsetStep = -1.0;
+  // Statics (energyTest): the error of an iterate is measured by the energy of the Newton correction
+  // that follows it, e_k = |du_k . R(q_{k-1})| = du_k^T J du_k (the squared Newton decrement), which
+  // does not depend on how stiff a direction is (|R| and |du| each do: an axial residual of 1e3 N
+  // with a tip error of 1e-8, or a step of 1e-9 with a bending error of 1e-5). The test, instead of
+  // the step test: e_k <= energyTolerance e_ref, or, at the round-off floor, e_k <= floorTolerance e_ref
+  // while e no longer falls (the .cpp says why). The line search (useFullNewtonStep) computes e_k.
+  bool energyTest = false;
+  PetscReal energyTolerance = 1e-20, floorTolerance = 1e-12;
+  PetscInt energyIteration = -1;                           // the iteration whose correction e is
+  PetscReal energy = 0.0, previousEnergy = 0.0, firstEnergy = 0.0;
+  PetscReal energyScale = 0.0;  // the strain energy at the start of the solve (set by the caller)
+  // The reference of the energy test: e_1, or the strain energy when larger (a solve whose load
+  // hardly changes, a sweep point from a good predictor: e_1 is then round-off itself).
+  PetscReal energyReference() const { return std::max(firstEnergy, energyScale); }
+  PetscReal energyRatio() const { return energyReference() > 0.0 ? energy / energyReference() : 0.0; }
   // The contraction of the last two corrections, theta = |du_k| / |du_{k-1}| (0 before two are known).
   PetscReal contraction() const { return iteration >= 2 && previousStep > 0.0 ? step / previousStep : 0.0; }
 };

@@ -20,6 +20,9 @@ struct StaticStep {
   PetscReal loadFactor = 0;  // in (0, 1]
   PetscInt newtonIterations = 0;
   PetscReal residualNorm = 0;
+  // The energy of the last Newton correction over the test's reference, e_k / e_ref (NewtonFloor):
+  // the squared relative error of the accepted state in the energy norm; -1 if another line search ran.
+  PetscReal energyRatio = -1;
 };
 
 class StaticSolver {
