@@ -22,6 +22,7 @@
 #include "strand/io/Checkpoint.hpp"
 #include "strand/io/Frames.hpp"
 #include "strand/io/OutputWriter.hpp"
+#include "strand/io/Probes.hpp"
 #include "strand/io/ResourceEstimate.hpp"
 #include "strand/io/SceneReader.hpp"
 #include "strand/solvers/Dynamics.hpp"
@@ -111,6 +112,7 @@ public:
       files.restart = _checkpoint.restart;
     }
     checkRunFiles(files, overwriteRequested());
+    _probes = std::make_unique<io::Probes>(_scene, m, _problem.dofs());  // may refuse the scene
     std::unique_ptr<solvers::StaticSolver> statics;  // its PETSc options are input too
     if (!dynamic && (!modal || hasLoads(_scene))) {
       statics = std::make_unique<solvers::StaticSolver>(_problem.assembler(), _scene.statics.loadSteps);
@@ -196,6 +198,7 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
       PetscCallCXX(_writer->writeScalarSeries("residual_norm", s.residualNorm));
       PetscCallCXX(_writer->writeScalarSeries("newton_energy_ratio", s.energyRatio));
+      PetscCall(_probes->write(*_writer, s.loadFactor, Xs, nullptr, nullptr));
       PetscFunctionReturn(0);
     };
     const std::string error = guardSolve(_comm, [&] { return solver.solve(X, onStep, failure); });
@@ -246,6 +249,7 @@ private:
     const int dim = _problem.model().dim();
     const std::vector<double>& q0 = _problem.model().initialCoordinates();
     solvers::DynamicsStep reached;
+    Vec probeForce = nullptr;  // the support forces, when a probe asks for one
     auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec Vs) -> PetscErrorCode {
       PetscFunctionBeginUser;
       _newtonTotal += s.newtonIterations;
@@ -301,6 +305,13 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
       PetscCallCXX(_writer->writeScalarSeries("time_step", s.timeStep));
       PetscCallCXX(_writer->writeScalarSeries("rejected_steps", s.rejectedSteps));
+      if (!_probes->empty()) {
+        if (_probes->needForce()) {
+          if (!probeForce) PetscCall(VecDuplicate(Xs, &probeForce));
+          PetscCall(dyn.supportForce(probeForce));
+        }
+        PetscCall(_probes->write(*_writer, s.time, Xs, Vs, probeForce));
+      }
       if (_checkpoint.every > 0 && s.step > _firstStep && s.step % _checkpoint.every == 0 && !last && !s.suspect)
         PetscCallCXX(writeDynamicsCheckpoint(_comm, _scene, _problem, dyn, Xs, Vs, _checkpoint.path));
       _progress.update("t " + fmt("%.5g", s.time) + " s  step " + std::to_string(s.step) + "  Newton " +
@@ -309,6 +320,7 @@ private:
       PetscFunctionReturn(0);
     };
     const std::string error = guardSolve(_comm, [&] { return dyn.run(X, V, onStep, failure); });
+    VecDestroy(&probeForce);
     if (!error.empty()) {
       *failure = std::string(dyn.schemeName()) + " failed after t = " + fmt("%.6g", reached.time) + " s, step " +
                  std::to_string(reached.step) + ": " + error + ". Try a smaller dynamics.dt, or check the scene's values";
@@ -458,6 +470,7 @@ private:
   solvers::Problem _problem;
   Progress _progress;
   std::unique_ptr<io::OutputWriter> _writer;
+  std::unique_ptr<io::Probes> _probes;
   PetscInt _newtonTotal = 0;
   CheckpointOptions _checkpoint;
   io::CheckpointData _restart;

@@ -497,7 +497,7 @@ const HubBeamKey kHubBeamBeamKeys[] = {{"length", &model::HubBeamDesc::length},
 
 // Top-level keys of the cable scenes that a hub_beam scene has no use for.
 const char* const kNotInHubBeamScenes[] = {"bodies", "rigid_bodies", "joints", "supports", "junctions", "loads",
-                                           "rotation", "sweep", "modes", "static", "discretization"};
+                                           "rotation", "sweep", "modes", "static", "discretization", "probes"};
 
 // ------------------------------------------------------------------------------------------------
 // Geometry
@@ -847,7 +847,8 @@ public:
     const Field root(rootNode, "", ctx_.file, lineOf(rootNode, 1));
     if (!root.present()) root.fail("the scene is empty; expected a map of scene keys");
     root.expectMap({"analysis", "dimension", "discretization", "bodies", "rigid_bodies", "joints", "supports",
-                    "junctions", "loads", "static", "modes", "rotation", "sweep", "dynamics", "output", "hub_beam"});
+                    "junctions", "loads", "static", "modes", "rotation", "sweep", "dynamics", "output", "hub_beam",
+                    "probes"});
     scene_.analysis = pick(root.child("analysis"), "analysis", kAnalyses).value;
     scene_.analysisMark = root.child("analysis").mark();
     if (scene_.analysis == model::Analysis::Modes &&
@@ -903,6 +904,7 @@ public:
         if (s.hub.present) failAt(s.hub.mark, "a turning hub is a motion in time: only with analysis: dynamic");
     }
     if (const Field f = root.child("output"); f.present()) readOutput(f);
+    if (const Field f = root.child("probes"); f.present()) readProbes(f);
     checkCatenaryDefaults();
     checkOutputNames();
     checkRepresentable();
@@ -1376,6 +1378,69 @@ private:
       if (const Field hub = item.child("hub"); hub.present()) readHub(hub, s);
       scene_.supports.push_back(std::move(s));
     }
+  }
+
+  // probes: [{name, body + node | body + at | rigid_body (+ point), frame, force}] (ProbeDesc).
+  void readProbes(const Field& f) {
+    if (scene_.analysis != model::Analysis::Static && scene_.analysis != model::Analysis::Dynamic)
+      f.fail("probes are written by static and dynamic runs (each load or time step)");
+    std::vector<std::string> names;
+    for (const Field& item : f.items()) {
+      item.expectMap({"name", "body", "node", "at", "rigid_body", "point", "frame", "force"});
+      model::ProbeDesc p;
+      p.mark = item.mark();
+      const Field name = item.child("name");
+      p.name = name.text();
+      if (p.name.empty() || p.name.find_first_of("/: ") != std::string::npos)
+        name.fail("'" + printable(p.name) + "' cannot name a probe's series: non-empty, no '/', ':' or spaces");
+      if (std::find(names.begin(), names.end(), p.name) != names.end()) name.fail("a second probe named '" + p.name + "'");
+      names.push_back(p.name);
+      const Field body = item.child("body"), rigid = item.child("rigid_body"), node = item.child("node"),
+                  at = item.child("at"), point = item.child("point"), force = item.child("force");
+      if (body.present() == rigid.present()) item.fail("give either 'body' (with 'node' or 'at') or 'rigid_body'");
+      if (body.present()) {
+        if (node.present() == at.present()) item.fail("give either 'node' or 'at' (a fraction of the body's length)");
+        if (point.present()) point.fail("'point' goes with 'rigid_body'");
+        if (node.present()) {
+          const model::NodeRef ref = readNodeRef(item);
+          p.kind = model::ProbeDesc::Kind::Node;
+          p.body = ref.body;
+          p.node = ref.node;
+        } else {
+          p.kind = model::ProbeDesc::Kind::Along;
+          p.body = findBody(body).name;
+          p.along = at.number();
+          if (p.along < 0.0 || p.along > 1.0) at.fail("must be in [0, 1] (a fraction of the body's length)");
+        }
+      } else {
+        if (node.present() || at.present()) item.fail("'node' and 'at' go with 'body', not 'rigid_body'");
+        p.kind = model::ProbeDesc::Kind::RigidPoint;
+        p.body = rigid.text();
+        if (!hasRigidBody(p.body)) rigid.fail("no rigid body named '" + printable(p.body) + "'");
+        if (point.present()) p.point = readVector(point, ctx_.dim);
+      }
+      if (const Field frame = item.child("frame"); frame.present()) {
+        p.frame = frame.text();
+        p.frameMark = frame.mark();
+        if (p.frame != "world" && p.frame != "hub" && !hasRigidBody(p.frame))
+          frame.fail("expected world, hub (the frame of the hub turning the probe's body) or a rigid body's name (got '" +
+                     printable(p.frame) + "')");
+      }
+      if (force.present()) {
+        p.force = force.boolean();
+        if (p.force && p.kind != model::ProbeDesc::Kind::Node)
+          force.fail("a probe's force is the support force on a held node: give 'node'");
+        if (p.force && scene_.analysis != model::Analysis::Dynamic)
+          force.fail("support forces are written by dynamic runs");
+      }
+      scene_.probes.push_back(std::move(p));
+    }
+  }
+
+  bool hasRigidBody(const std::string& name) const {
+    for (const model::RigidBodyDesc& r : scene_.rigidBodies)
+      if (r.name == name) return true;
+    return false;
   }
 
   // hub: {angle: <time function>, center, axis (3D)}: the support turns with a prescribed hub.

@@ -39,13 +39,15 @@ PetscErrorCode alignPhase(Vec xr, Vec xi) {
   PetscCall(VecDestroy(&t));
   PetscFunctionReturn(0);
 }
-// Shift-and-invert about the target with the project's direct solver.
-PetscErrorCode useShiftInvert(ST st) {
+// Shift-and-invert about the target with the project's direct solver; with multipliers (a clamp
+// holding a skew slope's direction, r'.n = 0) K - sigma M is a saddle point: MUMPS, which pivots
+// (M is zero on the multiplier rows: their eigenvalues are infinite and stay away from the target).
+PetscErrorCode useShiftInvert(ST st, bool saddlePoint) {
   PetscFunctionBeginUser;
   KSP ksp;
   PetscCall(STSetType(st, STSINVERT));
   PetscCall(STGetKSP(st, &ksp));
-  PetscCall(setDirectSolverDefaults(ksp));
+  PetscCall(setDirectSolverDefaults(ksp, saddlePoint));
   PetscFunctionReturn(0);
 }
 }  // namespace
@@ -261,7 +263,7 @@ PetscErrorCode ModalSolver::solveEps(int nev, ModalResult* result) {
     PetscCall(EPSSetWhichEigenpairs(_eps, EPS_TARGET_MAGNITUDE));
     PetscCall(EPSSetTolerances(_eps, 1e-12, 200));
     PetscCall(EPSGetST(_eps, &st));
-    PetscCall(useShiftInvert(st));
+    PetscCall(useShiftInvert(st, _asm.hasConstraints()));
     PetscCall(EPSSetOperators(_eps, _Kf, _Mf));
     PetscCall(EPSSetFromOptions(_eps));
   } else {
@@ -341,7 +343,7 @@ PetscErrorCode ModalSolver::solvePep(ModalResult* result, int count) {
     PetscCall(PEPSetWhichEigenpairs(_pep, PEP_TARGET_MAGNITUDE));
     PetscCall(PEPSetTolerances(_pep, 1e-12, 200));
     PetscCall(PEPGetST(_pep, &st));
-    PetscCall(useShiftInvert(st));
+    PetscCall(useShiftInvert(st, _asm.hasConstraints()));
     PetscCall(PEPSetOperators(_pep, 3, A));
     PetscCall(PEPSetFromOptions(_pep));
   } else {

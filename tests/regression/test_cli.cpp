@@ -216,12 +216,14 @@ TEST(Cli, RotatingBeamModesScene) {
     EXPECT_NE(r.output.find(w), std::string::npos) << w << "\n" << r.output;
   // issue 36 item 4: each mode labelled by where its kinetic energy lies; Wright et al.'s values are
   // the flapwise ones (out of the plane of rotation), the others lead-lag
-  for (const char* w : {"omega_bar 7.3603765, residual", "omega_bar 26.809115, residual", "omega_bar 66.684167, residual"}) {
+  // (the Frobenius series gives 7.360373019, 26.80908168, 66.68391438: the direction-only clamp leaves
+  // the root's centrifugal strain free, 2e-8, 1e-7 and 2e-6 from them at N = 32)
+  for (const char* w : {"omega_bar 7.3603728, residual", "omega_bar 26.809084, residual", "omega_bar 66.684047, residual"}) {
     const size_t at = r.output.find(w);
     ASSERT_NE(at, std::string::npos) << w << "\n" << r.output;
     EXPECT_NE(r.output.substr(at, r.output.find('\n', at) - at).find("flapwise 100%"), std::string::npos) << r.output;
   }
-  EXPECT_NE(r.output.find("omega_bar 4.2632315, residual"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("omega_bar 4.2632251, residual"), std::string::npos) << r.output;
   if (haveH5py()) {
     auto c = python(dir, "import sys, h5py\nf = h5py.File(sys.argv[1], 'r')\n"
                          "labels = [f['modes/%05d' % k].attrs['label'] for k in range(6)]\n"
@@ -293,7 +295,7 @@ TEST(Cli, SweepSceneWritesLociEventsAndCampbellDiagram) {
   const fs::path out = dir / "veering.h5";
   auto r = runCommand(strandBinary() + " sweep " + sourceDir() + "/meshes/rotating-beam-veering.yaml -o " + out.string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find("veering of loci 3-4 at gamma 31."), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("veering of loci 3-4 at gamma 30.8"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(mode shift)"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(dir / "veering.csv"));
   EXPECT_TRUE(fs::exists(dir / "veering_events.csv"));
@@ -378,6 +380,27 @@ TEST(Cli, SpinUpSceneRegression) {
     auto h = runCommand("/usr/bin/python3 -c \"import h5py; f = h5py.File('" + out.string() +
                         "'); print(f.attrs['status'], f['frames'].attrs['count'], len(f['series/support_work']))\"");
     EXPECT_NE(h.output.find("ok 201 20001"), std::string::npos) << h.output;
+    // The probes (issue 36 item 5): the tip in the hub frame equals the frames' last node turned
+    // back by the hub angle psi(t) (seed 001 Eq. 57), at every frame; the support's force on the
+    // root, radial in the hub frame, averages -rho A Omega^2 L^2 / 2 = -960 N over the last 2 s
+    // (rod theory; the residual vibration averages out to 1e-3), tangential ~ 0.
+    const std::string check =
+        "import h5py, numpy as np\n"
+        "f = h5py.File('" + out.string() + "'); s = f['series']; t = s['time'][:]\n"
+        "W, T = 4.0, 15.0\n"
+        "def psi(t): return np.where(t <= T, W * (t*t/(2*T) + T/(4*np.pi**2) * (np.cos(2*np.pi*t/T) - 1)), W * (t - T/2))\n"
+        "err = 0.0\n"
+        "for k in f['frames']:\n"
+        "    g = f['frames'][k]; tk = g.attrs['time']; x, y = g['beam/coordinates'][-1][:2]\n"
+        "    i = int(np.argmin(abs(t - tk))); a = psi(tk); c, sn = np.cos(a), np.sin(a)\n"
+        "    err = max(err, abs(c*x + sn*y - s['probe_tip_x'][i]), abs(-sn*x + c*y - s['probe_tip_y'][i]))\n"
+        "last = t >= t[-1] - 2.0\n"
+        "fx, fy = s['probe_root_fx'][:][last].mean(), s['probe_root_fy'][:][last].mean()\n"
+        "print('probe_err %.3e fx %.3f fy %.3f n %d' % (err, fx, fy, len(s['probe_tip_vx'])))\n"
+        "print('PROBES_OK' if err < 1e-12 and abs(fx / -960.0 - 1) < 1e-3 and abs(fy) < 1.0 else 'PROBES_BAD')\n";
+    std::ofstream(dir / "probes.py") << check;
+    auto pr = runCommand("/usr/bin/python3 " + (dir / "probes.py").string());
+    EXPECT_NE(pr.output.find("PROBES_OK"), std::string::npos) << pr.output;
   }
   fs::remove_all(dir);
 }

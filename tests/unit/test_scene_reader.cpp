@@ -604,7 +604,7 @@ TEST(SceneReader, UnknownChoicesListTheAllowedValues) {
   EXPECT_TRUE(failsWith(edit(kBase3d, "kind: line", "kind: helix"), 7, "bodies[0].geometry.kind",
                         "unknown geometry kind 'helix'; allowed: line, arc, polyline, catenary"));
   EXPECT_TRUE(failsWith(edit(kBase3d, "type: clamped", "type: welded"), 10, "supports[0].type",
-                        "unknown support type 'welded'; allowed: clamped, pinned, fixed"));
+                        "unknown support type 'welded'; allowed: clamped, clamped_unstretched, pinned, fixed"));
   EXPECT_TRUE(failsWith(edit(kBase3d, "rho: 7850}\n", "rho: 7850}\n    stress_free: curved\n"), 9,
                         "bodies[0].stress_free", "unknown stress_free 'curved'; allowed: straight, initial"));
 }
@@ -1287,4 +1287,31 @@ TEST(SceneReader, SpinTorqueNeedsASpinAngle) {
            "section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}", "section: {E: 2.1e11, rho: 7850, radius: 0.005}");
   const model::SceneDescription s = parseScene(edit(shaft, "force: [0, 0, -1]}", "spin_torque: 5}"), "scene.yaml");
   EXPECT_DOUBLE_EQ(s.loads.nodal[0].spinTorque, 5.0);
+}
+
+// requirement (issue 36 item 5): probes name a point and a frame; a wrong one names file, line,
+// key and reason.
+TEST(SceneReader, ProbesAreReadAndCheckedWhereTheyAreWritten) {
+  const std::string ok = kBase3d +
+                         "probes:\n"                                                   // 13
+                         "  - {name: tip, body: cable, node: last}\n"                  // 14
+                         "  - {name: mid, body: cable, at: 0.5, frame: world}\n";      // 15
+  const SceneDescription s = parseScene(ok, "scene.yaml");
+  ASSERT_EQ(s.probes.size(), 2u);
+  EXPECT_EQ(s.probes[0].node, -1);
+  EXPECT_EQ(s.probes[1].kind, strand::model::ProbeDesc::Kind::Along);
+  EXPECT_DOUBLE_EQ(s.probes[1].along, 0.5);
+  EXPECT_TRUE(failsWith(kBase3d + "probes:\n  - {name: a/b, body: cable, node: 0}\n", 14, "probes[0].name",
+                        "cannot name a probe's series"));
+  EXPECT_TRUE(failsWith(kBase3d + "probes:\n  - {name: p, body: rope, node: 0}\n", 14, "probes[0].body",
+                        "no body named 'rope'"));
+  EXPECT_TRUE(failsWith(kBase3d + "probes:\n  - {name: p, body: cable, at: 1.5}\n", 14, "probes[0].at", "must be in [0, 1]"));
+  EXPECT_TRUE(failsWith(kBase3d + "probes:\n  - {name: p, body: cable, node: 0, at: 0.2}\n", 14, "probes[0]",
+                        "give either 'node' or 'at'"));
+  EXPECT_TRUE(failsWith(kBase3d + "probes:\n  - {name: p, body: cable, node: 0, frame: hub2}\n", 14, "probes[0].frame",
+                        "expected world, hub"));
+  EXPECT_TRUE(failsWith(kBase3d + "probes:\n  - {name: p, body: cable, node: 0, force: true}\n", 14, "probes[0].force",
+                        "support forces are written by dynamic runs"));
+  EXPECT_TRUE(failsWith(kBase3d + "probes:\n  - {name: p, body: cable, node: 0}\n  - {name: p, body: cable, node: 1}\n", 15,
+                        "probes[1].name", "a second probe named 'p'"));
 }

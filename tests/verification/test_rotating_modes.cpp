@@ -72,7 +72,13 @@ TEST(RotatingModes, FlapwiseWithHubRadiusConvergesToFrobeniusSeries) {
       std::printf("delta %.1f gamma %4.1f flap %d: error N=16 %.2e N=32 %.2e rate %.2f\n", row.delta, row.gamma, k + 1,
                   err[0][k], err[1][k], rate);
       EXPECT_LT(err[1][k], 2e-5) << "delta " << row.delta << " gamma " << row.gamma << " mode " << k + 1;
-      EXPECT_GT(rate, 3.5) << "delta " << row.delta << " gamma " << row.gamma << " mode " << k + 1;
+      // the series is inextensible; the model stretches by up to gamma^2 (delta + 1/2) / mu^2 at the
+      // root (free under the clamp: 4e-8 at delta 0.5, gamma 2), which floors the error: a rate only
+      // where the error at N = 16 stands well above that
+      const double extensibility = row.gamma * row.gamma * (row.delta + 0.5) / 1e8;
+      if (err[0][k] > 10.0 * extensibility) {
+        EXPECT_GT(rate, 3.5) << "delta " << row.delta << " gamma " << row.gamma << " mode " << k + 1;
+      }
     }
   }
 }

@@ -268,6 +268,24 @@ struct DiscretizationDesc {
   int gaussPoints = 5;       // elastic forces; mass uses 4 points (exact)
 };
 
+// Probes (scene key `probes`): a point whose position and velocity (and, at a support, the
+// support's force on the body) are written every step as /series/probe_<name>_<component>, in a
+// chosen frame. The point: a body node, a fraction `at` of a body's length, or a point of a rigid
+// body (body-frame offset). The frame: the world, the rotating frame of the hub that turns the
+// probe's body (`hub`), or a rigid body's frame (its name).
+struct ProbeDesc {
+  enum class Kind { Node, Along, RigidPoint };
+  std::string name;
+  Kind kind = Kind::Node;
+  std::string body;     // a body (Node, Along) or a rigid body (RigidPoint)
+  long node = 0;        // Node: -1 is the last
+  double along = 0.0;   // Along: in [0, 1] of the body's reference length
+  Vec3 point{};         // RigidPoint: offset in the body frame
+  std::string frame = "world";
+  bool force = false;   // the support force on a held node
+  SourceMark mark, frameMark;
+};
+
 struct OutputDesc {
   std::string file;          // empty: <scene stem>.h5 in the working directory
   int samplesPerElement = 4; // centerline points per element in the output
@@ -310,6 +328,7 @@ struct SceneDescription {
   int dimension = 3;
   std::vector<BodyDesc> bodies;
   std::vector<SupportDesc> supports;
+  std::vector<ProbeDesc> probes;
   std::vector<JunctionDesc> junctions;
   std::vector<RigidBodyDesc> rigidBodies;
   std::vector<JointDesc> joints;
