@@ -405,6 +405,56 @@ TEST(Cli, SpinUpSceneRegression) {
   fs::remove_all(dir);
 }
 
+// requirement (issue 36 item 5): probes on a rigid link with a cable clamped to it
+// (meshes/link-and-cable.yaml, 0.5 s), at -n 1 and -n 2. Exact properties: the link's pin point stays
+// at the ground pin (to the joint's tolerance); a point of the link in the link's own frame is its
+// body-frame offset with zero velocity; the cable's root (at: 0), clamped to the link's end, is at
+// (0.25, 0) of the link's frame, its velocity there no larger than the index-3 clamp's own velocity
+// violation (constraint_velocity, 2e-6); at: 1 is the last node, as the frames write it;
+// the two rank counts agree to the solver tolerance.
+TEST(Cli, ProbesOnRigidAndCableBodiesInTheirFramesAgreeOnOneAndTwoRanks) {
+  const fs::path dir = scratchDir("probes");
+  std::ifstream in(sourceDir() + "/meshes/link-and-cable.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  scene.replace(scene.find("t_end: 2"), 8, "t_end: 0.5");
+  scene += "probes:\n"
+           "  - {name: pin, rigid_body: link, point: [-0.25, 0]}\n"
+           "  - {name: tipl, rigid_body: link, point: [0.25, 0], frame: link}\n"
+           "  - {name: root, body: cable, at: 0.0, frame: link}\n"
+           "  - {name: end, body: cable, at: 1.0}\n";
+  std::ofstream(dir / "probes.yaml") << scene;
+  const std::string twoRanks = "env -i PATH=\"$PATH\" HOME=\"$HOME\" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                               "OMPI_MCA_btl_vader_single_copy_mechanism=none " + std::string(STRAND_MPIEXEC) + " -n 2 ";
+  auto one = runCommand(strandBinary() + " run " + (dir / "probes.yaml").string() + " -o " + (dir / "p1.h5").string());
+  ASSERT_EQ(one.exitCode, 0) << one.output;
+  auto two = runCommand(twoRanks + strandBinary() + " run " + (dir / "probes.yaml").string() + " -o " + (dir / "p2.h5").string());
+  ASSERT_EQ(two.exitCode, 0) << two.output;
+  if (!haveH5py()) GTEST_SKIP() << "no h5py";
+  const std::string check =
+      "import h5py, numpy as np\n"
+      "a = h5py.File('" + (dir / "p1.h5").string() + "'); b = h5py.File('" + (dir / "p2.h5").string() + "')\n"
+      "s = a['series']; t = s['time'][:]\n"
+      "pin = max(abs(s['probe_pin_x'][:]).max(), abs(s['probe_pin_y'][:]).max())\n"
+      "own = max(abs(s['probe_tipl_x'][:] - 0.25).max(), abs(s['probe_tipl_y'][:]).max(), abs(s['probe_tipl_vx'][:]).max(), abs(s['probe_tipl_vy'][:]).max())\n"
+      "root = max(abs(s['probe_root_x'][:] - 0.25).max(), abs(s['probe_root_y'][:]).max())\n"
+      "rootv = max(abs(s['probe_root_vx'][:]).max(), abs(s['probe_root_vy'][:]).max()) / abs(s['constraint_velocity'][:]).max()\n"
+      "end = 0.0\n"
+      "for k in a['frames']:\n"
+      "    g = a['frames'][k]; i = int(np.argmin(abs(t - g.attrs['time']))); x, y = g['cable/coordinates'][-1][:2]\n"
+      "    end = max(end, abs(x - s['probe_end_x'][i]), abs(y - s['probe_end_y'][i]))\n"
+      "ranks = max(abs(s[k][:] - b['series'][k][:]).max() for k in s if k.startswith('probe_'))\n"
+      "moved = abs(s['probe_end_y'][-1])\n"
+      "print('pin %.1e own %.1e root %.1e rootv/|Gv| %.2f end %.1e ranks %.1e moved %.3f' % (pin, own, root, rootv, end, ranks, moved))\n"
+      "print('PROBES_OK' if pin < 1e-9 and own < 1e-12 and root < 1e-9 and rootv <= 1.0 and end < 1e-14 and ranks < 1e-8 and moved > 0.1 else 'PROBES_BAD')\n";
+  std::ofstream(dir / "check.py") << check;
+  auto c = runCommand("/usr/bin/python3 " + (dir / "check.py").string());
+  EXPECT_NE(c.output.find("PROBES_OK"), std::string::npos) << c.output;
+  fs::remove_all(dir);
+}
+
+
 // meshes/compound-pendulum.yaml: rigid rod on a revolute joint. Verification: at the half period
 // 2 sqrt(I_O / (m g l/2)) K(sin 45 deg) = 0.96667 s the rod is horizontal on the other side
 // (phi = -pi; tests/verification/test_multibody.cpp checks the equation of motion); here the CLI
