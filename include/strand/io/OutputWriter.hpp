@@ -50,6 +50,7 @@
 #pragma once
 #include <mpi.h>
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -88,10 +89,28 @@ public:
   OutputWriter(const OutputWriter&) = delete;
   OutputWriter& operator=(const OutputWriter&) = delete;
 
-  // Writes /frames/NNNNN for the next frame; `frames` has one entry per body, in layout order.
+  // When buffered data are committed (see "Buffering" above): once `intervalSeconds` have passed
+  // since the last commit, or once `maxBytes` of frame and series data are buffered, whichever
+  // comes first (checked at every write). intervalSeconds = 0 commits at every write, as the
+  // writer of issue 32 did per frame. Only rank 0's policy matters.
+  struct CommitPolicy {
+    double intervalSeconds = 2.0;
+    std::size_t maxBytes = std::size_t(4) << 20;
+  };
+  void setCommitPolicy(const CommitPolicy& policy);  // not collective; throws std::invalid_argument for < 0 s
+  CommitPolicy commitPolicy() const;
+
+  // Adds /frames/NNNNN for the next frame (buffered); `frames` has one entry per body, in layout order.
   void writeFrame(double time, const std::vector<BodyFrame>& frames);
-  // Appends `value` to /series/<name>, creating the dataset on first use.
+  // Appends `value` to /series/<name> (1-D), creating the dataset on first use (buffered: one
+  // dataset extension and one write per series and block).
   void writeScalarSeries(const std::string& name, double value);
+  // Appends `row` to /series/<name>, a 2-D dataset of rows x width, width = the first row's size;
+  // every later row must have that size (else std::invalid_argument), and a scalar series' name
+  // cannot be reused. Buffered as writeScalarSeries.
+  void writeVectorSeries(const std::string& name, const std::vector<double>& row);
+  // Commits whatever is buffered now (e.g. before a checkpoint, or to show a viewer the latest).
+  void flush();
   // Writes /modes (once per run) and <stem>_modes.xmf; shapes[m] has one entry per body. With
   // residuals (one per mode): each mode group's attribute `relative_residual`; with labels, its
   // `label` and `label_share` (solvers/ModeLabels.hpp).
@@ -105,7 +124,7 @@ public:
   // Root-group attributes; an existing attribute of the same name is replaced.
   void setAttribute(const std::string& name, double value);
   void setAttribute(const std::string& name, const std::string& value);
-  // Flushes and closes the file; later calls to close() do nothing, other methods throw.
+  // Commits the last block and closes the file; later calls to close() do nothing, other methods throw.
   void close();
 
   const std::string& path() const;
