@@ -157,7 +157,7 @@ private:
     d.close(std::string("cannot close dataset '") + name + "'");
   }
 
-  static constexpr std::size_t kCompactBytes = 0;
+  static constexpr std::size_t kCompactBytes = 16 << 10;
   const std::vector<BodyLayout>& bodies_;
   Hid gcpl_, compact_, contiguous_, scalar_;
   std::vector<Hid> spaces_;
@@ -326,19 +326,10 @@ struct OutputWriter::Impl {
     // object header per group and dataset, no B-tree and heap per group), several times cheaper
     // to write than the 1.6 format; readers since HDF5 1.8 (2008) open it (ParaView, h5py)
     check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18), "cannot set the file format");
-    // A metadata cache that holds a block's new object headers until its flush: the default (2 MB,
-    // adaptive) evicts, and so writes, them one by one while the block is written
-    H5AC_cache_config_t mdc;
-    mdc.version = H5AC__CURR_CACHE_CONFIG_VERSION;
-    check(H5Pget_mdc_config(fapl.get(), &mdc), "cannot read the metadata cache configuration");
-    mdc.set_initial_size = true;
-    mdc.initial_size = 32 << 20;
-    mdc.max_size = 64 << 20;
-    mdc.min_size = 16 << 20;
-    mdc.incr_mode = H5C_incr__off;
-    mdc.flash_incr_mode = H5C_flash_incr__off;
-    mdc.decr_mode = H5C_decr__off;
-    check(H5Pset_mdc_config(fapl.get(), &mdc), "cannot configure the metadata cache");
+    // Metadata and small raw data allocated from 1 MB blocks: the free-space bookkeeping of the
+    // default 2 kB blocks costs more than the frame's own writes
+    check(H5Pset_meta_block_size(fapl.get(), 1 << 20), "cannot set the metadata block size");
+    check(H5Pset_small_data_block_size(fapl.get(), 1 << 20), "cannot set the small-data block size");
     hid_t fid = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
     if (fid < 0) throw InputError("cannot create output file '" + path + "': " + hdf5Reason());
     file = Hid(fid, H5Fclose);

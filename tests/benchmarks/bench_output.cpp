@@ -12,7 +12,8 @@
 //       of bench_dynamics' loop on the same scene in this process. Target <= 1.5.
 // One JSON line per repetition and one summary line (median, min and max of each ratio over the
 // repetitions). Options: -repeat N (default 5), -t_end T (default: the scene's 20 s),
-// -strand PATH (default: this build's strand), -scene PATH (default: meshes/spin-up.yaml).
+// -strand PATH (default: this build's strand), -scene PATH (default: meshes/spin-up.yaml), -only_frames
+// (part (a) alone, no `strand run`).
 #include <petscsys.h>
 #include <petsctime.h>
 #include <unistd.h>
@@ -83,6 +84,7 @@ double integrate(const model::SceneDescription& scene, const std::string& out, d
   const double t1 = now();
   if (writer) {
     writer->close();
+    if (std::getenv("BENCH_OUTPUT_DEBUG")) std::fprintf(stderr, "frames %.3f s, close %.3f s\n", inFrames, now() - t1);
     inFrames += now() - t1;
   }
   if (!failure.empty()) std::fprintf(stderr, "bench_output: the spin-up failed: %s\n", failure.c_str());
@@ -145,6 +147,8 @@ int main(int argc, char** argv) {
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-t_end", &tEnd, nullptr));
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-strand", strandBuf, sizeof strandBuf, nullptr));
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-scene", sceneBuf, sizeof sceneBuf, nullptr));
+  PetscBool onlyFrames = PETSC_FALSE;
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-only_frames", &onlyFrames, nullptr));
   const fs::path dir = fs::temp_directory_path() / ("strand_bench_output_" + std::to_string(getpid()));
   fs::create_directories(dir);
 
@@ -166,10 +170,18 @@ int main(int argc, char** argv) {
     const double stepSeconds = integrate(scene, "", &none, &steps) / std::max(steps, 1L);
     const double framedRun = integrate(scene, (dir / "frames.h5").string(), &framed, &framedSteps);
     const double frameSeconds = framed / std::max(framedSteps, 1L);
+    a.push_back(frameSeconds / stepSeconds);
+    if (onlyFrames) {
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                            "{\"bench\": \"output_frames\", \"rep\": %d, \"steps\": %ld, \"us_per_step\": %.2f, "
+                            "\"us_per_frame\": %.2f, \"framed_run_us_per_step\": %.2f, \"frame_over_step\": %.3f}\n",
+                            static_cast<int>(rep), steps, 1e6 * stepSeconds, 1e6 * frameSeconds,
+                            1e6 * framedRun / std::max(framedSteps, 1L), a.back()));
+      continue;
+    }
     const RunTiming main = strandRun(strandBuf, mainScene, dir, "main");
     const RunTiming every = strandRun(strandBuf, everyScene, dir, "every");
     const RunTiming end = strandRun(strandBuf, endScene, dir, "end");
-    a.push_back(frameSeconds / stepSeconds);
     b.push_back(every.process / end.process);
     c.push_back(main.solve / std::max(steps, 1L) / stepSeconds);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD,
@@ -182,6 +194,9 @@ int main(int argc, char** argv) {
                           1e6 * framedRun / std::max(framedSteps, 1L), a.back(), every.process, end.process,
                           every.solve, end.solve, b.back(), 1e6 * main.solve / std::max(steps, 1L), main.process,
                           c.back()));
+  }
+  if (onlyFrames) {
+    b = c = {0.0};
   }
   const Stats sa = stats(a), sb = stats(b), sc = stats(c);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD,
