@@ -67,7 +67,7 @@ io::OutputWriter::CommitPolicy outputCommitPolicy() {
   PetscBool set = PETSC_FALSE;
   PetscOptionsGetReal(nullptr, nullptr, "-output_commit_interval", &interval, &set);
   if (set && !(interval >= 0.0 && std::isfinite(interval)))
-    throw InputError("-output_commit_interval " + std::to_string(interval) + ": a time in seconds >= 0 (default 2)");
+    throw InputError("-output_commit_interval " + fmt("%g", interval) + ": a time in seconds >= 0 (default 2)");
   policy.intervalSeconds = interval;
   return policy;
 }

@@ -170,7 +170,7 @@ enum ErrorKind : int { kOk = 0, kInput, kInvalidArgument, kLogic, kRuntime };
 
 struct OutputWriter::Impl {
   MPI_Comm comm = MPI_COMM_NULL;
-  int rank = 0;
+  int rank = 0, size = 1;
   std::string path;
   std::string xdmfPath, modesXdmfPath;
   std::string h5Ref;  // the .h5 basename, XML-escaped, as used in DataItem references
@@ -229,11 +229,13 @@ struct OutputWriter::Impl {
       }
     }
     int head[3] = {kind, static_cast<int>(message.size()), frames};
-    MPI_Bcast(head, 3, MPI_INT, 0, comm);
-    frames = head[2];  // a failed block takes its frames back: framesWritten() agrees on all ranks
+    if (size > 1) {  // one rank: no broadcast (a run makes dozens of these calls per step)
+      MPI_Bcast(head, 3, MPI_INT, 0, comm);
+      frames = head[2];  // a failed block takes its frames back: framesWritten() agrees on all ranks
+    }
     if (head[0] == kOk) return;
     message.resize(static_cast<std::size_t>(head[1]));
-    if (head[1] > 0) MPI_Bcast(message.data(), head[1], MPI_CHAR, 0, comm);
+    if (head[1] > 0 && size > 1) MPI_Bcast(message.data(), head[1], MPI_CHAR, 0, comm);
     switch (head[0]) {
       case kInput: throw InputError(message);
       case kInvalidArgument: throw std::invalid_argument(message);
@@ -637,6 +639,7 @@ OutputWriter::OutputWriter(MPI_Comm comm, std::string path, RunInfo info, std::v
   Impl& I = *impl_;
   I.comm = comm;
   MPI_Comm_rank(comm, &I.rank);
+  MPI_Comm_size(comm, &I.size);
   I.path = std::move(path);
   I.info = std::move(info);
   I.bodies = std::move(bodies);
