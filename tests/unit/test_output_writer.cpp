@@ -577,6 +577,7 @@ TEST(OutputWriter, AWriterNeverClosedLeavesTheLastCommit) {
     for (int f = 0; f < 10; ++f) e.push_back(10.0 * f);
     EXPECT_EQ(readDoubles(file, "/series/energy"), e);
     H5Fclose(file);
+    fs::remove_all(dir);  // the leaked writer's work file goes too (HDF5 closes it at exit)
   }
 }
 
