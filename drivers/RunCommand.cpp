@@ -59,6 +59,19 @@ void applyOptions(MPI_Comm comm, const std::function<PetscErrorCode()>& setFromO
   if (!error.empty()) throw InputError("PETSc options: " + error);
 }
 
+// -output_commit_interval <s> (default 2): the output file is committed at least this often while
+// buffered frames or series wait (OutputWriter.hpp, "Buffering"); 0 commits at every write.
+io::OutputWriter::CommitPolicy outputCommitPolicy() {
+  io::OutputWriter::CommitPolicy policy;
+  PetscReal interval = policy.intervalSeconds;
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsGetReal(nullptr, nullptr, "-output_commit_interval", &interval, &set);
+  if (set && !(interval >= 0.0 && std::isfinite(interval)))
+    throw InputError("-output_commit_interval " + fmt("%g", interval) + ": a time in seconds >= 0 (default 2)");
+  policy.intervalSeconds = interval;
+  return policy;
+}
+
 void checkMemory(MPI_Comm comm, const model::SceneDescription& scene, bool modal) {
   char buf[64] = "";
   PetscBool set = PETSC_FALSE;
@@ -127,7 +140,9 @@ public:
       }
     }
     io::RunInfo info{_scene.file, modal ? "modes" : dynamic ? "dynamic" : "static", kVersion, m.dim()};
+    const io::OutputWriter::CommitPolicy commitPolicy = outputCommitPolicy();  // input: read before the file exists
     _writer = std::make_unique<io::OutputWriter>(_comm, out, info, io::bodyLayouts(m, _scene.output.samplesPerElement));
+    _writer->setCommitPolicy(commitPolicy);
     say("strand " + std::string(kVersion) + ": " + _scene.file + ": " + std::to_string(m.numElements()) +
         " elements, " + std::to_string(m.numDofs()) + " coordinates, " + std::to_string(commSize()) + " rank(s)");
     Vec X;
@@ -249,6 +264,7 @@ private:
     const int dim = _problem.model().dim();
     const std::vector<double>& q0 = _problem.model().initialCoordinates();
     solvers::DynamicsStep reached;
+    PetscLogDouble lastProgress = 0.0;
     Vec probeForce = nullptr;  // the support forces, when a probe asks for one
     auto onStep = [&](const solvers::DynamicsStep& s, Vec Xs, Vec Vs) -> PetscErrorCode {
       PetscFunctionBeginUser;
@@ -312,11 +328,20 @@ private:
         }
         PetscCall(_probes->write(*_writer, s.time, Xs, Vs, probeForce));
       }
-      if (_checkpoint.every > 0 && s.step > _firstStep && s.step % _checkpoint.every == 0 && !last && !s.suspect)
+      if (_checkpoint.every > 0 && s.step > _firstStep && s.step % _checkpoint.every == 0 && !last && !s.suspect) {
+        PetscCallCXX(_writer->flush());  // the output holds every step up to the checkpoint: a restart leaves no gap
         PetscCallCXX(writeDynamicsCheckpoint(_comm, _scene, _problem, dyn, Xs, Vs, _checkpoint.path));
-      _progress.update("t " + fmt("%.5g", s.time) + " s  step " + std::to_string(s.step) + "  Newton " +
-                       std::to_string(s.newtonIterations) + "  E " + fmt("%.6e J", s.energy()),
-                       s.time / d.tEnd);
+      }
+      // the progress line at most every 0.1 s (and at the first and last step): formatting it every
+      // step costs 0.4 us, 2 % of the spin-up's step
+      PetscLogDouble now;
+      PetscCall(PetscTime(&now));
+      if (last || s.step == _firstStep || now - lastProgress >= 0.1) {
+        lastProgress = now;
+        _progress.update("t " + fmt("%.5g", s.time) + " s  step " + std::to_string(s.step) + "  Newton " +
+                         std::to_string(s.newtonIterations) + "  E " + fmt("%.6e J", s.energy()),
+                         s.time / d.tEnd);
+      }
       PetscFunctionReturn(0);
     };
     const std::string error = guardSolve(_comm, [&] { return dyn.run(X, V, onStep, failure); });

@@ -9,7 +9,9 @@ exists and reads back whole (centerline and coordinates of every body), and ever
 reads. A kill before the first commit leaves no file at all, which is fine too.
 
 The scene writes a frame at every step (64 elements, so a frame is a few kB of data and metadata),
-so that kills land in frame writes, series writes, flushes and commits alike. Each kill waits a
+and the runs commit their buffered frames every 0.02 s (-output_commit_interval; the default, 2 s,
+would leave most kills before the second commit), so that kills land in block writes, flushes and
+commits alike. Each kill waits a
 uniformly random time in [0, --max-delay] after the start (start-up included). Prints one line
 per kill and a summary; exit status 0 when every file was readable, 1 otherwise, 77 (ctest: skipped)
 without python3-h5py. Default ctest runs a short version (regression_kill); `cmake --build build
@@ -72,6 +74,8 @@ def main():
     p.add_argument("--max-delay", type=float, default=1.5)
     p.add_argument("--seed", type=int, default=None)
     p.add_argument("--keep", default=None, help="copy unreadable files here")
+    p.add_argument("--commit-interval", type=float, default=0.02,
+                   help="-output_commit_interval of the runs: short, so that kills land in block commits")
     a = p.parse_args()
     rng = random.Random(a.seed)
     work = tempfile.mkdtemp(prefix="strand-kill-")
@@ -85,7 +89,8 @@ def main():
     frames = []
     for i in range(a.kills):
         delay = rng.uniform(0.0, a.max_delay)
-        run = subprocess.Popen([a.binary, "run", scene, "-o", h5, "-overwrite"], stdout=subprocess.DEVNULL,
+        run = subprocess.Popen([a.binary, "run", scene, "-o", h5, "-overwrite", "-output_commit_interval",
+                                str(a.commit_interval)], stdout=subprocess.DEVNULL,
                                stderr=subprocess.DEVNULL, env=env)
         time.sleep(delay)
         run.send_signal(signal.SIGKILL)

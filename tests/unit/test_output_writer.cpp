@@ -1,8 +1,9 @@
 // requirement: the output writer produces the HDF5 layout of include/strand/io/OutputWriter.hpp
 // (root attributes, /bodies, one dataset per frame and body, /series, /modes), an XDMF 3 file that
 // references those datasets by the .h5 basename, a file that is readable with every frame up to the
-// last one while the run is still going (flush + atomic .xmf rewrite per frame), and InputError on
-// all ranks when the file cannot be created. Files are checked by reopening them with the HDF5 C API.
+// last commit while the run is still going (frames and series buffered and committed in blocks,
+// atomic .xmf rewrite per commit; issue 36 item 6), and InputError on all ranks when the file cannot
+// be created. Files are checked by reopening them with the HDF5 C API.
 #include <gtest/gtest.h>
 
 #include <type_traits>
@@ -292,13 +293,15 @@ TEST(OutputWriter, WritesFramesSeriesModesAndXdmf) {
 }
 
 // A run killed after frame 1 leaves a consistent pair: snapshot the files while the writer is open
-// (what is on disk at that instant is what a SIGKILL would leave) and read the snapshot.
+// (what is on disk at that instant is what a SIGKILL would leave) and read the snapshot. With a
+// commit interval of 0, every write commits (the writer of issue 32).
 TEST(OutputWriter, FileIsReadableAfterEachFrame) {
   const MPI_Comm comm = PETSC_COMM_WORLD;
   const std::string dir = freshDir("crash");
   const std::string path = dir + "/live.h5";
   const auto bodies = twoBodies();
   OutputWriter w(comm, path, runInfo(), bodies);
+  w.setCommitPolicy({0.0, std::size_t(4) << 20});
   if (rankOf(comm) == 0) {
     const std::string empty = readText(dir + "/live.xmf");
     EXPECT_TRUE(tagsBalanced(empty));
@@ -418,6 +421,224 @@ TEST(OutputWriter, DestructorCloses) {
     ASSERT_GE(file, 0);
     expectFrame(file, bodies, 0, 2.0);
     EXPECT_EQ(readDoubles(file, "/series/load_factor"), (std::vector<double>{2.0}));
+    H5Fclose(file);
+    fs::remove_all(dir);
+  }
+}
+
+namespace {
+
+// A policy that never commits by itself: only the first frame, flush() and close() do.
+OutputWriter::CommitPolicy never() { return {1e9, std::size_t(1) << 40}; }
+
+// A copy of `path` as it is on disk now: what a kill -9 at this instant would leave (rank 0).
+std::string snapshot(const std::string& path, const std::string& name) {
+  const std::string copy = fs::path(path).parent_path() / name;
+  fs::copy_file(path, copy, fs::copy_options::overwrite_existing);
+  return copy;
+}
+
+std::string workPath(const std::string& path) {
+  const fs::path p(path);
+  return (p.parent_path() / ("." + p.filename().string() + ".strand-work")).string();
+}
+
+}  // namespace
+
+// Issue 36 item 6: frames, scalar and vector series written in blocks read back identical; until a
+// commit, the file on disk (what a kill leaves) keeps the previous commit: the first frame alone,
+// with its .xmf naming that one frame; after close() everything is there.
+TEST(OutputWriter, FramesWrittenInBlocksReadBackIdentical) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("blocks");
+  const std::string path = dir + "/b.h5";
+  const auto bodies = twoBodies();
+  const int n = 40;
+  {
+    OutputWriter w(comm, path, runInfo(), bodies);
+    w.setCommitPolicy(never());
+    EXPECT_EQ(w.commitPolicy().intervalSeconds, 1e9);
+    for (int f = 0; f < n; ++f) {
+      w.writeFrame(0.1 * f, makeFrames(bodies, f));
+      w.writeScalarSeries("time", 0.1 * f);
+      w.writeVectorSeries("tip", {1.0 * f, 2.0 * f, 3.0 * f});
+    }
+    EXPECT_EQ(w.framesWritten(), n);
+    w.setAttribute("note", "blocks");
+    if (rankOf(comm) == 0) {
+      const std::string copy = snapshot(path, "early.h5");
+      EXPECT_EQ(countOf(readText(dir + "/b.xmf"), "CollectionType=\"Spatial\""), 1);
+      hid_t file = H5Fopen(copy.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      ASSERT_GE(file, 0);
+      EXPECT_EQ(attrInt(file, "/frames", "count"), 1);  // the first frame is committed at once
+      expectFrame(file, bodies, 0, 0.0);
+      EXPECT_FALSE(exists(file, "/frames/00001"));
+      EXPECT_FALSE(exists(file, "/series/time"));
+      EXPECT_LE(H5Aexists(file, "note"), 0);
+      H5Fclose(file);
+    }
+    w.close();
+  }
+  if (rankOf(comm) == 0) {
+    hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(attrInt(file, "/frames", "count"), n);
+    for (int f = 0; f < n; ++f) expectFrame(file, bodies, f, 0.1 * f);
+    std::vector<double> times, tip;
+    for (int f = 0; f < n; ++f) {
+      times.push_back(0.1 * f);
+      tip.insert(tip.end(), {1.0 * f, 2.0 * f, 3.0 * f});
+    }
+    EXPECT_EQ(readDoubles(file, "/series/time"), times);
+    EXPECT_EQ(dimsOf(file, "/series/tip"), (std::vector<hsize_t>{hsize_t(n), 3}));
+    EXPECT_EQ(readDoubles(file, "/series/tip"), tip);
+    EXPECT_EQ(attrString(file, "/", "note"), "blocks");
+    H5Fclose(file);
+    const std::string xmf = readText(dir + "/b.xmf");
+    EXPECT_TRUE(tagsBalanced(xmf));
+    EXPECT_EQ(countOf(xmf, "CollectionType=\"Spatial\""), n);
+    EXPECT_NE(xmf.find("b.h5:/frames/00039/stay/centerline"), std::string::npos);
+    EXPECT_FALSE(fs::exists(workPath(path)));
+    fs::remove_all(dir);
+  }
+}
+
+// Commits by size and by flush(): blocks appended to the same datasets, several commits per file.
+TEST(OutputWriter, CommitsWhenTheBufferFillsAndOnFlush) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("size");
+  const std::string path = dir + "/s.h5";
+  const auto bodies = twoBodies();
+  OutputWriter w(comm, path, runInfo(), bodies);
+  // a frame of twoBodies() is 15 + 18 + 9 + 8 = 50 doubles, 400 bytes: a commit every third frame
+  w.setCommitPolicy({1e9, 1000});
+  for (int f = 0; f < 7; ++f) w.writeFrame(1.0 * f, makeFrames(bodies, f));
+  if (rankOf(comm) == 0) {
+    hid_t file = H5Fopen(snapshot(path, "seven.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(attrInt(file, "/frames", "count"), 7);  // 1, then 2 blocks of 3
+    for (int f = 0; f < 7; ++f) expectFrame(file, bodies, f, 1.0 * f);
+    H5Fclose(file);
+  }
+  w.writeFrame(7.0, makeFrames(bodies, 7));
+  for (int k = 0; k < 5; ++k) w.writeScalarSeries("x", k);
+  w.flush();
+  if (rankOf(comm) == 0) {
+    hid_t file = H5Fopen(snapshot(path, "flushed.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(attrInt(file, "/frames", "count"), 8);
+    expectFrame(file, bodies, 7, 7.0);
+    EXPECT_EQ(readDoubles(file, "/series/x"), (std::vector<double>{0, 1, 2, 3, 4}));
+    H5Fclose(file);
+    EXPECT_EQ(countOf(readText(dir + "/s.xmf"), "CollectionType=\"Spatial\""), 8);
+  }
+  for (int k = 5; k < 8; ++k) w.writeScalarSeries("x", k);
+  w.close();
+  if (rankOf(comm) == 0) {
+    hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(readDoubles(file, "/series/x"), (std::vector<double>{0, 1, 2, 3, 4, 5, 6, 7}));
+    H5Fclose(file);
+    fs::remove_all(dir);
+  }
+}
+
+// A crash (here: the writer is never closed nor destroyed, as after a kill -9) leaves the file of
+// the last commit: readable, every frame and series value committed then, an .xmf naming just
+// those frames; what was buffered since is lost.
+TEST(OutputWriter, AWriterNeverClosedLeavesTheLastCommit) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("leak");
+  const std::string path = dir + "/k.h5";
+  const auto bodies = twoBodies();
+  auto* w = new OutputWriter(comm, path, runInfo(), bodies);
+  w->setCommitPolicy(never());
+  for (int f = 0; f < 10; ++f) {
+    w->writeFrame(0.5 * f, makeFrames(bodies, f));
+    w->writeScalarSeries("energy", 10.0 * f);
+  }
+  w->flush();
+  for (int f = 10; f < 25; ++f) {
+    w->writeFrame(0.5 * f, makeFrames(bodies, f));
+    w->writeScalarSeries("energy", 10.0 * f);
+  }
+  EXPECT_EQ(w->framesWritten(), 25);
+  // `w` is leaked on purpose: no destructor, no close (HDF5 closes the work file at exit)
+  if (rankOf(comm) == 0) {
+    const std::string xmf = readText(dir + "/k.xmf");
+    EXPECT_TRUE(tagsBalanced(xmf));
+    EXPECT_EQ(countOf(xmf, "CollectionType=\"Spatial\""), 10);
+    hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(attrInt(file, "/frames", "count"), 10);
+    for (int f = 0; f < 10; ++f) expectFrame(file, bodies, f, 0.5 * f);
+    EXPECT_FALSE(exists(file, "/frames/00010"));
+    std::vector<double> e;
+    for (int f = 0; f < 10; ++f) e.push_back(10.0 * f);
+    EXPECT_EQ(readDoubles(file, "/series/energy"), e);
+    H5Fclose(file);
+    fs::remove_all(dir);  // the leaked writer's work file goes too (HDF5 closes it at exit)
+  }
+}
+
+// A block whose commit fails is taken back whole: framesWritten() returns to the last commit on
+// all ranks, the file and the .xmf keep that commit, and the next frame takes the first lost index.
+TEST(OutputWriter, AFailedBlockIsTakenBack) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("failblock");
+  const std::string path = dir + "/f.h5";
+  const auto bodies = twoBodies();
+  OutputWriter w(comm, path, runInfo(), bodies);
+  w.setCommitPolicy(never());
+  w.writeFrame(0.0, makeFrames(bodies, 0));  // committed at once
+  w.writeScalarSeries("x", 0.0);
+  w.flush();
+  for (int f = 1; f < 4; ++f) {
+    w.writeFrame(1.0 * f, makeFrames(bodies, 9));
+    w.writeScalarSeries("x", 99.0);
+  }
+  EXPECT_EQ(w.framesWritten(), 4);
+  if (rankOf(comm) == 0) fs::create_directory(dir + "/f.xmf.tmp");  // blocks the .xmf rewrite
+  EXPECT_THROW(w.flush(), std::runtime_error);
+  EXPECT_EQ(w.framesWritten(), 1);
+  if (rankOf(comm) == 0) fs::remove(dir + "/f.xmf.tmp");
+  w.writeFrame(1.0, makeFrames(bodies, 1));
+  w.writeScalarSeries("x", 1.0);
+  w.close();
+  if (rankOf(comm) == 0) {
+    hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(attrInt(file, "/frames", "count"), 2);
+    expectFrame(file, bodies, 0, 0.0);
+    expectFrame(file, bodies, 1, 1.0);
+    EXPECT_FALSE(exists(file, "/frames/00002"));
+    EXPECT_EQ(readDoubles(file, "/series/x"), (std::vector<double>{0.0, 1.0}));
+    H5Fclose(file);
+    EXPECT_EQ(countOf(readText(dir + "/f.xmf"), "CollectionType=\"Spatial\""), 2);
+    fs::remove_all(dir);
+  }
+}
+
+TEST(OutputWriter, VectorSeriesKeepTheirWidth) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("vector");
+  OutputWriter w(comm, dir + "/v.h5", runInfo(), twoBodies());
+  w.writeVectorSeries("p", {1.0, 2.0});
+  EXPECT_THROW(w.writeVectorSeries("p", {1.0, 2.0, 3.0}), std::invalid_argument);
+  EXPECT_THROW(w.writeScalarSeries("p", 1.0), std::invalid_argument);
+  EXPECT_THROW(w.writeVectorSeries("q", {}), std::invalid_argument);
+  w.writeScalarSeries("s", 1.0);
+  EXPECT_THROW(w.writeVectorSeries("s", {1.0}), std::invalid_argument);
+  EXPECT_THROW(w.writeVectorSeries("a/b", {1.0}), strand::InputError);
+  EXPECT_THROW(w.setCommitPolicy({-1.0, 10}), std::invalid_argument);
+  w.writeVectorSeries("p", {3.0, 4.0});
+  w.close();
+  if (rankOf(comm) == 0) {
+    hid_t file = H5Fopen((dir + "/v.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(dimsOf(file, "/series/p"), (std::vector<hsize_t>{2, 2}));
+    EXPECT_EQ(readDoubles(file, "/series/p"), (std::vector<double>{1, 2, 3, 4}));
+    EXPECT_EQ(readDoubles(file, "/series/s"), (std::vector<double>{1.0}));
     H5Fclose(file);
     fs::remove_all(dir);
   }
