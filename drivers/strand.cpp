@@ -66,6 +66,8 @@ const char* kRunHelp =
     "  -wall_time S      stop after S seconds of integration: checkpoint, exit code 4\n"
     "  -restart FILE     continue a dynamic run from a checkpoint (any number of ranks)\n"
     "  -overwrite        replace an existing output (else an existing result is refused)\n"
+    "  -output_commit_interval S  frames are buffered and committed to the output every S\n"
+    "                    seconds (default 2; a kill loses at most the last S seconds)\n"
     "  -max_memory SIZE  refuse a scene whose memory estimate exceeds SIZE (e.g. 64G; default:\n"
     "                    what the host has)\n"
     "SIGTERM, SIGINT, SIGUSR1: finish the step, checkpoint, status = stopped, exit code 4\n"
