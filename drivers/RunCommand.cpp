@@ -145,15 +145,10 @@ public:
     _writer->setCommitPolicy(commitPolicy);
     say("strand " + std::string(kVersion) + ": " + _scene.file + ": " + std::to_string(m.numElements()) +
         " elements, " + std::to_string(m.numDofs()) + " coordinates, " + std::to_string(commSize()) + " rank(s)");
-    // a clamp on a hub holds the whole slope (Model::clampsSlopeDirection): say so, not silently
-    for (const model::SupportDesc& sup : _scene.supports)
-      if (sup.type == model::SupportType::Clamped && sup.hub.present)
-        for (const model::BodyDesc& b : _scene.bodies)
-          if (b.name == sup.at.body && elements::kindInfo(b.kind).layout[elements::kindInfo(b.kind).orientationBlock] ==
-                                           elements::BlockRole::AxialGradient)
-            say("note: " + sup.mark.where() + ": a clamped support on a hub holds the whole slope, i.e. zero axial "
-                "strain at the root; for a free root stretch use a clamp joint on a driven rigid body "
-                "(meshes/spin-up-joint.yaml), or write clamped_unstretched to say that this is meant");
+    for (const model::SourceMark& mark : m.hubClampsHoldingStretch())  // not silently (Model::clampsSlopeDirection)
+      say("note: " + mark.where() + ": a clamped support on a hub holds the whole slope, i.e. zero axial "
+          "strain at the root; for a free root stretch use a clamp joint on a driven rigid body "
+          "(meshes/spin-up-joint.yaml), or write clamped_unstretched to say that this is meant");
     Vec X;
     PetscCallAbort(_comm, _problem.dofs().createVector(&X));
     PetscCallAbort(_comm, _problem.assembler().initialState(X));

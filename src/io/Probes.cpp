@@ -1,5 +1,6 @@
 #include "strand/io/Probes.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "strand/core/Error.hpp"
@@ -7,9 +8,6 @@
 namespace strand::io {
 
 namespace {
-model::Vec3 crossOf(const model::Vec3& a, const model::Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 double dotOf(const model::Vec3& a, const model::Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 }  // namespace
 
@@ -42,7 +40,7 @@ Probes::Probes(const model::SceneDescription& scene, const model::Model& model, 
     p.name = d.name;
     p.kind = d.kind;
     p.force = d.force;
-    std::vector<int> own;  // the blocks of the point, to find the hub that turns it
+    std::vector<int> own;  // the blocks of the probe's body, to find the hub that turns it
     if (d.kind == model::ProbeDesc::Kind::RigidPoint) {
       const int r = rigidIndex(d.body);
       if (r < 0) throw InputError(d.mark.where() + ": no rigid body named '" + d.body + "'");
@@ -53,10 +51,10 @@ Probes::Probes(const model::SceneDescription& scene, const model::Model& model, 
       const int bi = bodyIndex(d.body);
       if (bi < 0) throw InputError(d.mark.where() + ": no body named '" + d.body + "'");
       const model::Body& b = model.bodies()[bi];
+      own = b.posBlock;
       if (d.kind == model::ProbeDesc::Kind::Node) {
         const int n = d.node < 0 ? b.elements : static_cast<int>(d.node);
         p.slots.push_back(slotOf(b.posBlock[n]));
-        own.push_back(b.posBlock[n]);
         if (d.force)
           for (int i = 0; i < _dim; ++i)
             if (!model.fixedDofs()[b.posBlock[n] * _dim + i])
@@ -67,25 +65,16 @@ Probes::Probes(const model::SceneDescription& scene, const model::Model& model, 
         const int e = std::min(static_cast<int>(std::floor(s)), b.elements - 1);
         p.body = bi;
         p.eta = s - e;
+        // the element's blocks in order (positionOnBody's layout)
         for (int a = 0; a < 2 * b.blocksPerNode; ++a) p.slots.push_back(slotOf(b.nodeBlocks[e * b.blocksPerNode + a]));
-        own.push_back(b.posBlock[e]);
       }
-      // an Along probe's slots: the element's blocks in order (positionOnBody's layout)
     }
     if (d.frame == "hub") {
       p.frame = FrameKind::Hub;
       const auto& hubs = model.hubMotions();
       for (size_t h = 0; h < hubs.size() && p.hub < 0; ++h)
         for (int blk : hubs[h].blocks)
-          for (int o : own)
-            if (blk == o) p.hub = static_cast<int>(h);
-      if (p.hub < 0 && d.kind != model::ProbeDesc::Kind::RigidPoint) {  // a hub on another node of the body
-        const model::Body& b = model.bodies()[bodyIndex(d.body)];
-        for (size_t h = 0; h < hubs.size() && p.hub < 0; ++h)
-          for (int blk : hubs[h].blocks)
-            for (int pb : b.posBlock)
-              if (blk == pb) p.hub = static_cast<int>(h);
-      }
+          if (std::find(own.begin(), own.end(), blk) != own.end()) p.hub = static_cast<int>(h);
       if (p.hub < 0)
         throw InputError(d.frameMark.where() + ": no hub turns body '" + d.body +
                          "' (frame: hub is the frame of a support's hub on the probe's body)");
@@ -172,19 +161,13 @@ Probes::Frame Probes::frameOf(const Probe& p, double t, const std::vector<double
   for (int k = 0; k < 3; ++k) f.a[k][k] = 1.0;
   if (p.frame == FrameKind::Rigid) {
     rigidFrame(_dim, p.frameSlot, q, v, &f.c, &f.dc, f.a, f.da);
-  } else if (p.frame == FrameKind::Hub) {
+  } else if (p.frame == FrameKind::Hub) {  // the axes turned with the hub, and their rates
     const model::HubMotion& h = _model.hubMotions()[p.hub];
-    const model::TimeValue psi = h.angle.at(t);
-    const double turned = psi.f - h.angle.at(0.0).f, co = std::cos(turned), si = std::sin(turned);
-    const model::Vec3 axis = _dim == 2 ? model::Vec3{0, 0, 1} : h.axis;
     f.c = h.center;
-    for (int k = 0; k < 3; ++k) {  // Rodrigues: R e_k, and its rate psi' axis x (R e_k)
+    for (int k = 0; k < 3; ++k) {
       model::Vec3 e{};
       e[k] = 1.0;
-      const model::Vec3 exe = crossOf(axis, e);
-      for (int i = 0; i < 3; ++i) f.a[k][i] = e[i] * co + exe[i] * si + axis[i] * axis[k] * (1.0 - co);
-      const model::Vec3 rate = crossOf(axis, f.a[k]);
-      for (int i = 0; i < 3; ++i) f.da[k][i] = psi.df * rate[i];
+      f.a[k] = h.turn(e, t, &f.da[k]);
     }
   }
   return f;

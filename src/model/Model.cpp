@@ -355,9 +355,12 @@ void Model::placeInitialState(Build& build) {
 // carries the centrifugal tension, a rod's root the end load (issue 36: holding the length forced
 // zero root strain, 2.5 % on a chordwise frequency at 26 % strain). A beam's cross-section vector
 // (shear kinds) is held whole, as is a clamp a hub turns (the direction would turn with time).
+namespace {
+bool orientedBySlope(const Body& b) { return b.info().layout[b.info().orientationBlock] == elements::BlockRole::AxialGradient; }
+}  // namespace
+
 bool Model::clampsSlopeDirection(const SupportDesc& s, const Body& b) const {
-  return s.type == SupportType::Clamped && !s.hub.present &&
-         b.info().layout[b.info().orientationBlock] == elements::BlockRole::AxialGradient;
+  return s.type == SupportType::Clamped && !s.hub.present && orientedBySlope(b);
 }
 
 // The unit normals of the direction t (2D: one, 3D: two, orthonormal).
@@ -485,6 +488,7 @@ void Model::addSupports(Build& build) {
     if (s.type == SupportType::Fixed)
       for (int c : s.dofs) _fixed[b.block(n, c / _dim) * _dim + c % _dim] = 1;
     if (s.hub.present) {
+      if (s.type == SupportType::Clamped && orientedBySlope(b)) _hubClampsHoldingStretch.push_back(s.mark);
       HubMotion h{s.hub.center, s.hub.axis, s.hub.angle, {pb}, {0}};
       if (wholeOrientation) {
         h.blocks.push_back(ob);

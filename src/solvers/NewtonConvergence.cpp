@@ -88,11 +88,11 @@ bool stepConverged(const NewtonFloor& floor, PetscInt it, PetscReal previousStep
   return it > 0 && keptMatrixConverged(floor, it, snorm, xnorm) && error < stol * std::max(xnorm, floor.coordinateNorm);
 }
 
-// u -= lambda du and the sums of squares of both, and du . r (r: the residual at u before the step);
-// with an offset p (NewtonFloor::offset, X_a - u
-// before the correction) also p += lambda du and its sum of squares. restrict (distinct vectors)
-// lets the compiler vectorize it.
-template <bool withOffset>
+// u -= lambda du and the sums of squares of both; with an offset p (NewtonFloor::offset, X_a - u
+// before the correction) also p += lambda du and its sum of squares; with a residual r (the energy
+// test of statics: r at u before the step) also du . r. restrict (distinct vectors) lets the
+// compiler vectorize it.
+template <bool withOffset, bool withEnergy>
 void stepLoop(PetscInt n, PetscReal lambda, PetscScalar* PETSC_RESTRICT u, const PetscScalar* PETSC_RESTRICT du,
               const PetscScalar* PETSC_RESTRICT r, PetscScalar* PETSC_RESTRICT p, PetscReal sums[4]) {
   PetscReal uu = 0.0, dd = 0.0, pp = 0.0, dr = 0.0;
@@ -100,7 +100,7 @@ void stepLoop(PetscInt n, PetscReal lambda, PetscScalar* PETSC_RESTRICT u, const
     u[i] -= lambda * du[i];
     uu += PetscRealPart(u[i] * PetscConj(u[i]));
     dd += PetscRealPart(du[i] * PetscConj(du[i]));
-    dr += PetscRealPart(du[i] * PetscConj(r[i]));
+    if constexpr (withEnergy) dr += PetscRealPart(du[i] * PetscConj(r[i]));
     if constexpr (withOffset) {
       p[i] += lambda * du[i];
       pp += PetscRealPart(p[i] * PetscConj(p[i]));
@@ -112,38 +112,37 @@ void stepLoop(PetscInt n, PetscReal lambda, PetscScalar* PETSC_RESTRICT u, const
   sums[3] = dr;
 }
 
-// X -= lambda Y in place, and |X|, |Y| (2-norms) and *energy = lambda |Y . F| from the same pass (memory-bound: SNES's basic
+// X -= lambda Y in place, and |X|, |Y| (2-norms) from the same pass (memory-bound: SNES's basic
 // line search writes W = X - lambda Y, reads both for the norms and copies W back to X). With an
 // offset (X_a - X before the step; null: none) also offset += lambda Y and *offsetNorm = |offset|,
-// |X_a - X| of the new iterate, in that pass and reduction.
+// |X_a - X| of the new iterate; with F (the residual before the step; null: none) also
+// *energy = lambda |Y . F|; all in that pass and one reduction.
 PetscErrorCode updateInPlace(Vec X, Vec Y, Vec F, PetscReal lambda, Vec offset, PetscReal* xnorm, PetscReal* ynorm,
                              PetscReal* offsetNorm, PetscReal* energy) {
   PetscInt n;
   PetscScalar *x, *p = nullptr;
-  const PetscScalar *y, *f;
+  const PetscScalar *y, *f = nullptr;
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(X, &n));
   PetscCall(VecGetArray(X, &x));
   PetscCall(VecGetArrayRead(Y, &y));
-  PetscCall(VecGetArrayRead(F, &f));
+  if (F) PetscCall(VecGetArrayRead(F, &f));
+  if (offset) PetscCall(VecGetArray(offset, &p));
   PetscReal sums[4], global[4];
-  if (offset) {
-    PetscCall(VecGetArray(offset, &p));
-    stepLoop<true>(n, lambda, x, y, f, p, sums);
-    PetscCall(VecRestoreArray(offset, &p));
-  } else {
-    stepLoop<false>(n, lambda, x, y, f, nullptr, sums);
-  }
-  PetscCall(PetscLogFlops((offset ? 11.0 : 8.0) * n));
-  PetscCall(VecRestoreArrayRead(F, &f));
+  if (offset && F) stepLoop<true, true>(n, lambda, x, y, f, p, sums);
+  else if (offset) stepLoop<true, false>(n, lambda, x, y, f, p, sums);
+  else if (F) stepLoop<false, true>(n, lambda, x, y, f, p, sums);
+  else stepLoop<false, false>(n, lambda, x, y, f, p, sums);
+  PetscCall(PetscLogFlops((6.0 + (offset ? 3.0 : 0.0) + (F ? 2.0 : 0.0)) * n));
+  if (offset) PetscCall(VecRestoreArray(offset, &p));
+  if (F) PetscCall(VecRestoreArrayRead(F, &f));
   PetscCall(VecRestoreArrayRead(Y, &y));
   PetscCall(VecRestoreArray(X, &x));
-  if (!offset) sums[2] = sums[3];
-  PetscCallMPI(MPI_Allreduce(sums, global, offset ? 4 : 3, MPIU_REAL, MPIU_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(X))));
+  PetscCallMPI(MPI_Allreduce(sums, global, 4, MPIU_REAL, MPIU_SUM, PetscObjectComm(reinterpret_cast<PetscObject>(X))));
   *xnorm = std::sqrt(global[0]);
   *ynorm = std::sqrt(global[1]);
   if (offset) *offsetNorm = std::sqrt(global[2]);
-  *energy = std::abs(lambda * (offset ? global[3] : global[2]));
+  *energy = std::abs(lambda * global[3]);
   PetscFunctionReturn(0);
 }
 
@@ -163,7 +162,8 @@ PetscErrorCode fullStep(SNESLineSearch ls, void* ctx) {
   PetscCall(SNESLineSearchGetLambda(ls, &lambda));
   PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_SUCCEEDED));
   PetscReal energy = 0.0;
-  PetscCall(updateInPlace(X, Y, F, lambda, floor->offset, &xnorm, &ynorm, &floor->offsetStep, &energy));
+  PetscCall(updateInPlace(X, Y, floor->energyTest ? F : nullptr, lambda, floor->offset, &xnorm, &ynorm,
+                          &floor->offsetStep, &energy));
   PetscCall(SNESGetIterationNumber(snes, &it));
   PetscCall(SNESGetTolerances(snes, nullptr, nullptr, &stol, nullptr, nullptr));
   if (floor->energyTest) {  // the correction of iteration it + 1
@@ -212,6 +212,7 @@ PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm,
     floor->fnorm0 = fnorm;
     floor->step = floor->previousStep = floor->firstStep = 0.0;
     floor->offsetStep = -1.0;  // set by the line search (fullStep) if there is an offset
+    floor->energyIteration = -1;  // set by the line search (fullStep) with the energy test
   } else {
     floor->previousStep = floor->step;
     floor->step = snorm;
@@ -220,9 +221,8 @@ PetscErrorCode roundoffFloorConvergence(SNES snes, PetscInt it, PetscReal xnorm,
   floor->fnorm = fnorm;
   floor->iteration = it;
   PetscCall(SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, nullptr));
-  if (floor->energyTest && floor->energyIteration >= 0) {
+  if (floor->energyTest && floor->energyIteration == it) {
     // statics with this file's line search: the residual tests, the energy test, never the step test
-    if (it == 0) floor->energyIteration = -1;
     if (*reason == SNES_CONVERGED_SNORM_RELATIVE) *reason = SNES_CONVERGED_ITERATING;
     if (*reason == SNES_CONVERGED_ITERATING && energyConverged(*floor, it)) *reason = SNES_CONVERGED_SNORM_RELATIVE;
     if (!std::isfinite(fnorm)) *reason = SNES_DIVERGED_FNORM_NAN;

@@ -60,6 +60,13 @@ CliResult python(const fs::path& dir, const std::string& code, const std::string
   return runCommand("/usr/bin/python3 " + script.string() + " " + args);
 }
 
+// The prefix that runs a command on two ranks from inside this (singleton MPI) process: a clean
+// environment, or Open MPI refuses.
+std::string twoRanks() {
+  return "env -i PATH=\"$PATH\" HOME=\"$HOME\" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+         "OMPI_MCA_btl_vader_single_copy_mechanism=none " + std::string(STRAND_MPIEXEC) + " -n 2 ";
+}
+
 // The number after `key` in `text` (e.g. "rows=" or "\"rel2\": "), NaN when absent.
 double numberAfter(const std::string& text, const std::string& key) {
   const size_t p = text.find(key);
@@ -398,8 +405,7 @@ TEST(Cli, SpinUpSceneRegression) {
         "fx, fy = s['probe_root_fx'][:][last].mean(), s['probe_root_fy'][:][last].mean()\n"
         "print('probe_err %.3e fx %.3f fy %.3f n %d' % (err, fx, fy, len(s['probe_tip_vx'])))\n"
         "print('PROBES_OK' if err < 1e-12 and abs(fx / -960.0 - 1) < 1e-3 and abs(fy) < 1.0 else 'PROBES_BAD')\n";
-    std::ofstream(dir / "probes.py") << check;
-    auto pr = runCommand("/usr/bin/python3 " + (dir / "probes.py").string());
+    auto pr = python(dir, check, "");
     EXPECT_NE(pr.output.find("PROBES_OK"), std::string::npos) << pr.output;
   }
   fs::remove_all(dir);
@@ -414,22 +420,17 @@ TEST(Cli, SpinUpSceneRegression) {
 // the two rank counts agree to the solver tolerance.
 TEST(Cli, ProbesOnRigidAndCableBodiesInTheirFramesAgreeOnOneAndTwoRanks) {
   const fs::path dir = scratchDir("probes");
-  std::ifstream in(sourceDir() + "/meshes/link-and-cable.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string scene = text.str();
+  std::string scene = readText(sourceDir() + "/meshes/link-and-cable.yaml");
   scene.replace(scene.find("t_end: 2"), 8, "t_end: 0.5");
   scene += "probes:\n"
            "  - {name: pin, rigid_body: link, point: [-0.25, 0]}\n"
            "  - {name: tipl, rigid_body: link, point: [0.25, 0], frame: link}\n"
            "  - {name: root, body: cable, at: 0.0, frame: link}\n"
            "  - {name: end, body: cable, at: 1.0}\n";
-  std::ofstream(dir / "probes.yaml") << scene;
-  const std::string twoRanks = "env -i PATH=\"$PATH\" HOME=\"$HOME\" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-                               "OMPI_MCA_btl_vader_single_copy_mechanism=none " + std::string(STRAND_MPIEXEC) + " -n 2 ";
+  writeFile(dir / "probes.yaml", scene);
   auto one = runCommand(strandBinary() + " run " + (dir / "probes.yaml").string() + " -o " + (dir / "p1.h5").string());
   ASSERT_EQ(one.exitCode, 0) << one.output;
-  auto two = runCommand(twoRanks + strandBinary() + " run " + (dir / "probes.yaml").string() + " -o " + (dir / "p2.h5").string());
+  auto two = runCommand(twoRanks() + strandBinary() + " run " + (dir / "probes.yaml").string() + " -o " + (dir / "p2.h5").string());
   ASSERT_EQ(two.exitCode, 0) << two.output;
   if (!haveH5py()) GTEST_SKIP() << "no h5py";
   const std::string check =
@@ -448,8 +449,7 @@ TEST(Cli, ProbesOnRigidAndCableBodiesInTheirFramesAgreeOnOneAndTwoRanks) {
       "moved = abs(s['probe_end_y'][-1])\n"
       "print('pin %.1e own %.1e root %.1e rootv/|Gv| %.2f end %.1e ranks %.1e moved %.3f' % (pin, own, root, rootv, end, ranks, moved))\n"
       "print('PROBES_OK' if pin < 1e-9 and own < 1e-12 and root < 1e-9 and rootv <= 1.0 and end < 1e-14 and ranks < 1e-8 and moved > 0.1 else 'PROBES_BAD')\n";
-  std::ofstream(dir / "check.py") << check;
-  auto c = runCommand("/usr/bin/python3 " + (dir / "check.py").string());
+  auto c = python(dir, check, "");
   EXPECT_NE(c.output.find("PROBES_OK"), std::string::npos) << c.output;
   fs::remove_all(dir);
 }
@@ -823,8 +823,6 @@ TEST(Cli, RestartContinuesTheTrajectoryAndAWallTimeLimitStopsCleanly) {
   };
   std::vector<Comparison> comparisons;
   const bool h5 = haveH5py();
-  const std::string twoRanks = "env -i PATH=\"$PATH\" HOME=\"$HOME\" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-                               "OMPI_MCA_btl_vader_single_copy_mechanism=none " + std::string(STRAND_MPIEXEC) + " -n 2 ";
   constexpr double kNewtonStol = 1e-12, kBitIdentical = 1e-15;
 
   // The shipped scene: generalized-alpha rho_inf = 1, 1000 steps; the checkpoint written at step 800,
@@ -844,8 +842,7 @@ TEST(Cli, RestartContinuesTheTrajectoryAndAWallTimeLimitStopsCleanly) {
   ASSERT_EQ(one.exitCode, 0) << one.output;
   EXPECT_NE(one.output.find("restart from " + ckpt.string() + " at t = 0.8 s, step 800"), std::string::npos)
       << one.output;
-  // mpiexec from inside this (singleton MPI) process: a clean environment, or Open MPI refuses
-  auto two = runCommand(twoRanks + strandBinary() + " run " + scene + " -restart " + ckpt.string() + " -o " +
+  auto two = runCommand(twoRanks() + strandBinary() + " run " + scene + " -restart " + ckpt.string() + " -o " +
                         (dir / "r2.h5").string());
   ASSERT_EQ(two.exitCode, 0) << two.output;
   comparisons.push_back({dir / "full.h5", dir / "r1.h5", 200 * kNewtonStol, false});
@@ -898,12 +895,12 @@ TEST(Cli, RestartContinuesTheTrajectoryAndAWallTimeLimitStopsCleanly) {
       // BDF2 on the GGL form of the compound pendulum, restarted on two ranks (reductions in another
       // order: the Newton bound, N = 98). Measured: identical.
       {"bdf2_ggl", pendulum, "{integrator: bdf, dt: 1e-3, t_end: 0.3, output_every: 100}", 101, "step 202",
-       98 * kNewtonStol, twoRanks},
+       98 * kNewtonStol, twoRanks()},
       // an ALE tether paying out (configuration-dependent mass, prescribed material coordinates, a
       // block on a joint), restarted on two ranks under full Newton. Measured: rel2 2.5e-16 (and
       // 3.6e-15 m for the shipped scene to t = 10 s on one rank after a wall-time stop at 3.5 s).
       {"ale_payout", tether, "{integrator: generalized_alpha, rho_inf: 0.5, dt: 2e-3, t_end: 0.6, output_every: 100}",
-       101, "step 202", 98 * kNewtonStol, twoRanks, " -dyn_newton_matrix_contraction 0"},
+       101, "step 202", 98 * kNewtonStol, twoRanks(), " -dyn_newton_matrix_contraction 0"},
   };
   // A generalized-alpha run that chose X0 at its first step (a steel cantilever released under
   // gravity: the predictor kinks the clamped element) continues from X0 after a restart: the

@@ -22,6 +22,9 @@ struct HubMotion {
   // Displacement u = q(t) - q0, velocity and acceleration of block k (index into `blocks`) with
   // reference coordinates q0 (dim entries); dim = 2 rotates in the xy plane.
   void state(int k, const double* q0, int dim, double t, double* u, double* v, double* a) const;
+  // A vector w0 of the scene's geometry turned with the hub: w = R(psi(t) - psi(0)) w0 and its rate
+  // dw/dt (null: not wanted); state() applies it to each moved block, io::Probes to the hub's axes.
+  Vec3 turn(const Vec3& w0, double t, Vec3* rate = nullptr) const;
 };
 
 }  // namespace strand::model

@@ -153,6 +153,9 @@ public:
   const std::vector<double>& initialVelocities() const { return _v0; }
   // Supports on turning hubs (their DOFs are among fixedDofs; the others stay at zero displacement).
   const std::vector<HubMotion>& hubMotions() const { return _hubs; }
+  // `clamped` supports of cable-like kinds on a hub: they hold the whole slope, the root's stretch
+  // too (clampsSlopeDirection), which the driver tells the user
+  const std::vector<SourceMark>& hubClampsHoldingStretch() const { return _hubClampsHoldingStretch; }
   // Single prescribed coordinates (a driven rigid body's phi): u = function(t) - function(0), among
   // fixedDofs (the scene's angle is the one at t = 0).
   struct PrescribedCoordinate {
@@ -202,6 +205,7 @@ private:
   std::vector<TimedLoad> _timed;
   std::optional<TimeFunction> _loadFunction;
   std::vector<HubMotion> _hubs;
+  std::vector<SourceMark> _hubClampsHoldingStretch;
   std::vector<PrescribedCoordinate> _prescribed;
   Vec3 _gravity{};
   RotationDesc _rotation;
