@@ -12,6 +12,7 @@ strand_test(NAME unit_resource_estimate SOURCES unit/test_resource_estimate.cpp 
 target_compile_definitions(unit_scene_reader PRIVATE STRAND_DOCS_DIR="${PROJECT_SOURCE_DIR}/docs")
 strand_test(NAME unit_time_function SOURCES unit/test_time_function.cpp LABELS unit)
 strand_test(NAME unit_constraint SOURCES unit/test_constraint.cpp LABELS unit)
+strand_test(NAME unit_pulley_contact SOURCES unit/test_pulley_contact.cpp LABELS unit)
 strand_test(NAME unit_state_space SOURCES unit/test_state_space.cpp LABELS unit NPROCS 1 2)
 strand_test(NAME unit_hub_beam SOURCES unit/test_hub_beam.cpp LABELS unit)
 strand_test(NAME unit_interface_schur SOURCES unit/test_interface_schur.cpp LABELS unit NPROCS 1 2 3)

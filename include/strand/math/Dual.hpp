@@ -60,6 +60,14 @@ Dual<N> sqrt(const Dual<N>& a) {
   return r;
 }
 
+template <int N>
+Dual<N> tanh(const Dual<N>& a) {
+  Dual<N> r(std::tanh(a.v));
+  const double g = 1.0 - r.v * r.v;
+  for (int i = 0; i < N; ++i) r.d[i] = g * a.d[i];
+  return r;
+}
+
 inline double value(double x) { return x; }
 template <int N> double value(const Dual<N>& x) { return x.v; }
 

@@ -1,0 +1,144 @@
+// Distributed belt-pulley contact (issue 34, seed 004): the force per unit reference length that a
+// rigid circular pulley exerts on one point of a belt's centerline, in 2D, and its exact tangents.
+// Pure functions of the point's state and the pulley's; no PETSc (docs/contact.md).
+//
+// Kinematics (the penalty formulation of Kerkkänen, García-Vallejo & Mikkola, Nonlinear Dyn. 43
+// (2006), with the relative velocity of the two material points that meet):
+//   d = r - c,  rho = |d|,  n = d / rho (outward normal),  t = e_z x n (the pulley's positive sense)
+//   gap        g = rho - (R + offset)        offset: the belt's contact surface from its centerline (h/2)
+//   gap rate   gdot = n . (v - v_c)
+//   slip       s = t . (v - v_c - omega e_z x d) = t . (v - v_c) - omega rho
+//              (the belt point's velocity relative to the pulley's material point at the same place)
+// Normal law: penalty with damping, compression positive, no adhesion,
+//   p = max(0, -k g - c gdot) while g < 0, else 0                                  [N/m]
+// Friction law (the scene's choice):
+//   none                  f_t = 0
+//   regularized Coulomb   f_t = -mu p tanh(s / v_s)  (|f_t| -> mu p for |s| >> v_s; "stick" is a
+//                         creep |s| < v_s whose force grows with it)
+// Force on the belt: f = p n + f_t t. The pulley takes -f, and about its centre the torque
+// (d x (-f))_z = -rho f_t.
+//
+// Tangents, with P = I - n n^T, E = [e_z]x, u = v - v_c, phi = tanh(s / v_s), phi' = (1 - phi^2) / v_s:
+//   dn/dd = P / rho,  dt/dd = E P / rho,  dgdot/dd = u^T P / rho,  ds/dd = u^T E P / rho - omega n^T,
+//   dp/dd = -k n^T - c u^T P / rho,  dp/du = -c n^T,  ds/du = t^T,  ds/domega = -rho,
+//   df/dd = n dp/dd + p P / rho + t df_t/dd + f_t E P / rho,   df_t/dd = -mu (phi dp/dd + p phi' ds/dd),
+//   df/du = n dp/du + t df_t/du,   df_t/du = -mu (phi dp/du + p phi' t^T),   df/domega = mu p phi' rho t.
+// d = r - c and u = v - v_c: derivatives in the belt's r and v are those in d and u, in the pulley's
+// c and v_c their negatives.
+#pragma once
+#include <cmath>
+
+#include "strand/math/Dual.hpp"
+
+namespace strand::contact {
+
+enum class FrictionLaw { None, RegularizedCoulomb };
+
+struct ContactLaw {
+  double stiffness = 0.0;     // k: normal penalty per unit reference length of belt [N/m^2]
+  double damping = 0.0;       // c: normal damping [N s/m^2]
+  FrictionLaw friction = FrictionLaw::None;
+  double mu = 0.0;            // Coulomb coefficient
+  double slipVelocity = 1e-3; // v_s: the regularization [m/s]
+  double offset = 0.0;        // the belt's contact surface from its centerline (h/2) [m]
+};
+
+// A rigid circular pulley's state: centre, its velocity, angular speed (counterclockwise), radius.
+struct PulleyState {
+  double c[2] = {0.0, 0.0};
+  double vc[2] = {0.0, 0.0};
+  double omega = 0.0;
+  double radius = 0.0;
+};
+
+// What the law found at a point (for output and the tangents).
+struct ContactPoint {
+  bool touching = false;  // p > 0
+  double pressure = 0.0;  // p [N/m]
+  double slip = 0.0;      // s [m/s]
+  double friction = 0.0;  // f_t [N/m]
+};
+
+namespace detail {
+template <class S>
+S frictionFactor(const ContactLaw& law, const S& s) {  // f_t / p
+  using std::tanh;
+  using math::tanh;
+  if (law.friction == FrictionLaw::None) return S(0.0);
+  return -law.mu * tanh(s / law.slipVelocity);
+}
+}  // namespace detail
+
+// f (2) at a belt point r with velocity v; returns whether the point touches (p > 0). S = double,
+// or a dual number for the tests.
+template <class S>
+bool pointForce(const ContactLaw& law, const PulleyState& pl, const S* r, const S* v, S* f) {
+  using std::sqrt;
+  using math::sqrt;
+  f[0] = f[1] = S(0.0);
+  const S d[2] = {r[0] - pl.c[0], r[1] - pl.c[1]};
+  const S rho = sqrt(d[0] * d[0] + d[1] * d[1]);
+  const S g = rho - (pl.radius + law.offset);
+  if (!(math::value(g) < 0.0) || !(math::value(rho) > 0.0)) return false;
+  const S n[2] = {d[0] / rho, d[1] / rho}, t[2] = {-n[1], n[0]};
+  const S u[2] = {v[0] - pl.vc[0], v[1] - pl.vc[1]};
+  const S p = -law.stiffness * g - law.damping * (n[0] * u[0] + n[1] * u[1]);
+  if (!(math::value(p) > 0.0)) return false;
+  const S s = t[0] * u[0] + t[1] * u[1] - pl.omega * rho;
+  const S ft = p * detail::frictionFactor(law, s);
+  for (int i = 0; i < 2; ++i) f[i] = p * n[i] + ft * t[i];
+  return true;
+}
+
+// f, df/dr and df/dv (2 x 2, row-major; = df/dd and df/du), df/domega (2), and the point's state.
+inline ContactPoint pointTangent(const ContactLaw& law, const PulleyState& pl, const double* r, const double* v,
+                                 double* f, double* dfdr, double* dfdv, double* dfdomega) {
+  ContactPoint out;
+  for (int i = 0; i < 4; ++i) dfdr[i] = dfdv[i] = 0.0;
+  f[0] = f[1] = dfdomega[0] = dfdomega[1] = 0.0;
+  const double d[2] = {r[0] - pl.c[0], r[1] - pl.c[1]};
+  const double rho = std::hypot(d[0], d[1]);
+  const double g = rho - (pl.radius + law.offset);
+  if (!(g < 0.0) || !(rho > 0.0)) return out;
+  const double n[2] = {d[0] / rho, d[1] / rho}, t[2] = {-n[1], n[0]};
+  const double u[2] = {v[0] - pl.vc[0], v[1] - pl.vc[1]};
+  const double gdot = n[0] * u[0] + n[1] * u[1];
+  const double p = -law.stiffness * g - law.damping * gdot;
+  if (!(p > 0.0)) return out;
+  const double s = t[0] * u[0] + t[1] * u[1] - pl.omega * rho;
+  double phi = 0.0, dphi = 0.0;
+  if (law.friction == FrictionLaw::RegularizedCoulomb) {
+    phi = std::tanh(s / law.slipVelocity);
+    dphi = (1.0 - phi * phi) / law.slipVelocity;
+  }
+  const double ft = -law.mu * p * phi;
+  out = {true, p, s, ft};
+  for (int i = 0; i < 2; ++i) f[i] = p * n[i] + ft * t[i];
+
+  double P[4], EP[4];  // P = I - n n^T, E P (E = [[0, -1], [1, 0]])
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) P[i * 2 + j] = (i == j ? 1.0 : 0.0) - n[i] * n[j];
+  for (int j = 0; j < 2; ++j) {
+    EP[0 * 2 + j] = -P[1 * 2 + j];
+    EP[1 * 2 + j] = P[0 * 2 + j];
+  }
+  double dp_dd[2], ds_dd[2], dft_dd[2], dp_du[2], dft_du[2];
+  for (int j = 0; j < 2; ++j) {
+    const double uP = (u[0] * P[0 * 2 + j] + u[1] * P[1 * 2 + j]) / rho;
+    const double uEP = (u[0] * EP[0 * 2 + j] + u[1] * EP[1 * 2 + j]) / rho;
+    dp_dd[j] = -law.stiffness * n[j] - law.damping * uP;
+    ds_dd[j] = uEP - pl.omega * n[j];
+    dft_dd[j] = -law.mu * (phi * dp_dd[j] + p * dphi * ds_dd[j]);
+    dp_du[j] = -law.damping * n[j];
+    dft_du[j] = -law.mu * (phi * dp_du[j] + p * dphi * t[j]);
+  }
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      dfdr[i * 2 + j] = n[i] * dp_dd[j] + p * P[i * 2 + j] / rho + t[i] * dft_dd[j] + ft * EP[i * 2 + j] / rho;
+      dfdv[i * 2 + j] = n[i] * dp_du[j] + t[i] * dft_du[j];
+    }
+  for (int i = 0; i < 2; ++i) dfdomega[i] = law.mu * p * dphi * rho * t[i];
+  return out;
+}
+
+}  // namespace strand::contact
