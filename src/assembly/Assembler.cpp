@@ -6,6 +6,7 @@
 #include "ElementFamily.hpp"
 #include "Multibody.hpp"
 #include "NodalMomentLoads.hpp"
+#include "PulleyContacts.hpp"
 
 namespace strand::assembly {
 
@@ -83,6 +84,7 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
     _families.push_back(makeElementFamily(model, dofs, local, _q0Local));
   _moments = std::make_unique<NodalMomentLoads>(model, dofs, _q0Local);
   _multibody = std::make_unique<Multibody>(model, dofs, _q0Local);
+  _contacts = std::make_unique<PulleyContacts>(model, dofs, _q0Local);
 }
 
 Assembler::~Assembler() {
@@ -272,18 +274,18 @@ PetscErrorCode Assembler::addGhostsToOwners(Vec work) {
 
 PetscErrorCode Assembler::staticResidual(Vec X, PetscReal loadFactor, Vec R) {
   PetscFunctionBeginUser;
-  PetscCall(assembleResidual(X, nullptr, loadFactor, R, SupportRows::Value));
+  PetscCall(assembleResidual(X, nullptr, 0.0, loadFactor, R, SupportRows::Value));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode Assembler::residual(Vec X, Vec V, PetscReal t, Vec R, SupportRows rows) {
   PetscFunctionBeginUser;
-  PetscCall(assembleResidual(X, V, _model.loadFactor(t), R, rows));
+  PetscCall(assembleResidual(X, V, t, _model.loadFactor(t), R, rows));
   PetscCall(addTimedLoads(t, R, -1.0, rows == SupportRows::Value));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R, SupportRows rows) {
+PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal t, PetscReal loadFactor, Vec R, SupportRows rows) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evResidual, 0, 0, 0, 0));
   LocalRead x, v;
@@ -294,6 +296,7 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal loadFactor, V
   for (const auto& f : _families) PetscCallCXX(f->residual(x.a, v.a, loadFactor, r.a));
   _moments->residual(x.a, loadFactor, r.a);
   PetscCallCXX(_multibody->residual(x.a, _constraintScale, loadFactor, r.a));
+  _contacts->residual(x.a, V ? v.a : nullptr, t, r.a);
   PetscCall(endLocalSum(&r));
   // owned rows: nodal forces and supports
   PetscScalar* owned;
@@ -328,6 +331,7 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   for (const auto& f : _families) PetscCall(f->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_moments->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, _constraintScale, 0.0, loadFactor, J, _fixedLocal));
+  PetscCall(_contacts->jacobian(x.a, nullptr, 0.0, 0.0, J, nullptr, _fixedLocal));
   PetscCall(endLocal(&x));
   PetscCall(assembleWithSupportDiagonal(J));
   PetscCall(PetscLogEventEnd(evJacobian, 0, 0, 0, 0));
@@ -347,6 +351,7 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal s
   for (const auto& f : _families) PetscCall(f->dynamicJacobian(x.a, v.a, loadFactor, shiftV, shiftA, J, D, _fixedLocal));
   PetscCall(_moments->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, _constraintScale, shiftA, loadFactor, J, _fixedLocal));
+  PetscCall(_contacts->jacobian(x.a, V ? v.a : nullptr, t, shiftV, J, D, _fixedLocal));
   if (A && V && hasVariableMass()) {
     LocalRead a;
     PetscCall(beginLocal(A, _rWork, &a));
@@ -371,8 +376,8 @@ PetscErrorCode Assembler::externalForce(Vec F) {
   PetscCall(VecDuplicate(F, &R1));
   PetscCall(VecSet(X0, 0.0));
   // supported rows included (Reaction rows): the energy balance needs the loads' power on moving supports
-  PetscCall(assembleResidual(X0, nullptr, 0.0, F, SupportRows::Reaction));   // f_int(0)
-  PetscCall(assembleResidual(X0, nullptr, 1.0, R1, SupportRows::Reaction));  // f_int(0) - f_ext
+  PetscCall(assembleResidual(X0, nullptr, 0.0, 0.0, F, SupportRows::Reaction));   // f_int(0)
+  PetscCall(assembleResidual(X0, nullptr, 0.0, 1.0, R1, SupportRows::Reaction));  // f_int(0) - f_ext
   PetscCall(VecAXPY(F, -1.0, R1));
   PetscCall(VecDestroy(&X0));
   PetscCall(VecDestroy(&R1));
@@ -563,6 +568,19 @@ PetscErrorCode Assembler::addTimedLoads(PetscReal t, Vec R, PetscReal scale, boo
     }
   }
   PetscCall(VecRestoreArray(R, &r));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::contactPoints(Vec X, Vec V, PetscReal t, std::vector<ContactPointOut>& out) {
+  PetscFunctionBeginUser;
+  LocalRead x, v;
+  PetscCall(beginLocal(X, _xWork, &x));
+  if (V) PetscCall(beginLocal(V, _vWork, &v));
+  out.clear();
+  for (const PulleyContacts::PointState& p : _contacts->points(x.a, V ? v.a : nullptr, t))
+    out.push_back({p.body, p.element, p.pulley, p.point, {p.r[0], p.r[1]}, p.state});
+  PetscCall(endLocal(&x));
+  if (V) PetscCall(endLocal(&v));
   PetscFunctionReturn(0);
 }
 

@@ -23,6 +23,7 @@
 
 #include "strand/core/Error.hpp"
 #include "strand/elements/ElementRegistry.hpp"
+#include "strand/model/InitialGeometry.hpp"
 
 namespace strand::io {
 namespace {
@@ -507,6 +508,7 @@ struct Context {
   fs::path sceneDir;  // polyline CSV files are relative to it
   int dim = 3;
   std::vector<std::string>* inputs = nullptr;  // SceneDescription::inputFiles: every file read
+  const std::vector<model::PulleyDesc>* pulleys = nullptr;  // what a wrap path turns around
 };
 
 void readLine(const Field& f, const Context& ctx, GeometryDesc& g) {
@@ -607,6 +609,40 @@ void readCatenary(const Field& f, const Context& ctx, GeometryDesc& g) {
   }
 }
 
+// wrap (2D): start, end, around: [{pulley, sense: cw | ccw, turns}], offset (the path's distance
+// from each pulley's surface: half the belt's height).
+void readWrap(const Field& f, const Context& ctx, GeometryDesc& g) {
+  if (ctx.dim != 2) f.child("kind").fail("a wrap path lies in the xy plane: only when dimension is 2");
+  g.start = readVector(f.child("start"), ctx.dim);
+  g.end = readVector(f.child("end"), ctx.dim);
+  double offset = 0.0;
+  if (const Field o = f.child("offset"); o.present()) offset = requireNonNegative(o);
+  const std::vector<Field> around = f.child("around").items();
+  if (around.empty()) f.child("around").fail("needs at least one pulley");
+  for (const Field& item : around) {
+    item.expectMap({"pulley", "sense", "turns"});
+    const Field name = item.child("pulley");
+    const std::string wanted = name.text();
+    const model::PulleyDesc* pulley = nullptr;
+    std::vector<std::string> names;
+    for (const model::PulleyDesc& p : *ctx.pulleys) {
+      if (p.name == wanted) pulley = &p;
+      names.push_back(p.name);
+    }
+    if (!pulley)
+      name.fail("no pulley named '" + printable(wanted) + "'" + (names.empty() ? " (the scene has no pulleys)" : "; pulleys: " + join(names)));
+    model::WrapTurn w;
+    w.center = pulley->center;
+    w.radius = pulley->radius + offset;
+    const Field sense = item.child("sense");
+    const std::string sn = sense.text();
+    if (sn != "cw" && sn != "ccw") sense.fail("expected cw or ccw (the sense in which the path goes around the pulley)");
+    w.sense = sn == "ccw" ? 1 : -1;
+    if (const Field t = item.child("turns"); t.present()) w.turns = requireIntInRange(t, 0, 1000);
+    g.wrap.push_back(w);
+  }
+}
+
 struct GeometryKindInfo {
   const char* name;
   GeometryKind value;
@@ -618,6 +654,7 @@ const GeometryKindInfo kGeometryKinds[] = {
     {"arc", GeometryKind::Arc, {"kind", "center", "radius", "start_angle", "end_angle", "normal"}, readArc},
     {"polyline", GeometryKind::Polyline, {"kind", "points", "file"}, readPolyline},
     {"catenary", GeometryKind::Catenary, {"kind", "start", "end", "length", "sag_direction"}, readCatenary},
+    {"wrap", GeometryKind::Wrap, {"kind", "start", "end", "around", "offset"}, readWrap},
 };
 
 GeometryDesc readGeometry(const Field& f, const Context& ctx) {
@@ -627,6 +664,7 @@ GeometryDesc readGeometry(const Field& f, const Context& ctx) {
   f.expectMap(kind.keys);
   g.kind = kind.value;
   kind.read(f, ctx, g);
+  if (g.kind == GeometryKind::Wrap) (void)model::InitialGeometry(g, ctx.dim, {});  // tangents exist (else InputError)
   return g;
 }
 
@@ -636,6 +674,7 @@ double bodyLength(const GeometryDesc& g) {
     case GeometryKind::Line: return norm(sub(g.end, g.start));
     case GeometryKind::Arc: return g.radius * std::abs(g.endAngle - g.startAngle);
     case GeometryKind::Catenary: return g.length;
+    case GeometryKind::Wrap: return model::InitialGeometry(g, 2, {}).length();
     case GeometryKind::Polyline: {
       double sum = 0.0;
       for (size_t i = 0; i + 1 < g.points.size(); ++i) sum += norm(sub(g.points[i + 1], g.points[i]));
@@ -841,6 +880,7 @@ public:
   explicit SceneParser(const std::string& file) : ctx_{file, fs::path(file).parent_path(), 3} {
     scene_.file = file;
     ctx_.inputs = &scene_.inputFiles;
+    ctx_.pulleys = &scene_.pulleys;
   }
 
   model::SceneDescription parse(const YAML::Node& rootNode) {
@@ -848,7 +888,7 @@ public:
     if (!root.present()) root.fail("the scene is empty; expected a map of scene keys");
     root.expectMap({"analysis", "dimension", "discretization", "bodies", "rigid_bodies", "joints", "supports",
                     "junctions", "loads", "static", "modes", "rotation", "sweep", "dynamics", "output", "hub_beam",
-                    "probes"});
+                    "probes", "pulleys", "contact"});
     scene_.analysis = pick(root.child("analysis"), "analysis", kAnalyses).value;
     scene_.analysisMark = root.child("analysis").mark();
     if (scene_.analysis == model::Analysis::Modes &&
@@ -857,6 +897,7 @@ public:
     if (const Field f = root.child("hub_beam"); f.present()) return parseHubBeamScene(root, f);
     scene_.dimension = ctx_.dim = requireIntInRange(root.child("dimension"), 2, 3);
     if (const Field f = root.child("discretization"); f.present()) readDiscretization(f);
+    if (const Field f = root.child("pulleys"); f.present()) readPulleys(f);
     const Field rigid = root.child("rigid_bodies");
     readBodies(root.child("bodies"), rigid.present());
     if (rigid.present()) readRigidBodies(rigid);
@@ -905,6 +946,8 @@ public:
     }
     if (const Field f = root.child("output"); f.present()) readOutput(f);
     if (const Field f = root.child("probes"); f.present()) readProbes(f);
+    if (const Field f = root.child("contact"); f.present()) readContacts(f);
+    else if (const Field p = root.child("pulleys"); p.present()) p.fail("pulleys act through contact: add a 'contact' entry for the body that touches them");
     checkCatenaryDefaults();
     checkOutputNames();
     checkRepresentable();
@@ -1377,6 +1420,73 @@ private:
       }
       if (const Field hub = item.child("hub"); hub.present()) readHub(hub, s);
       scene_.supports.push_back(std::move(s));
+    }
+  }
+
+  // pulleys: [{name, center, radius, speed}] (PulleyDesc; 2D).
+  void readPulleys(const Field& f) {
+    if (ctx_.dim != 2) f.fail("pulleys are circles in the xy plane: only when dimension is 2 (3D belt drives are not built)");
+    if (scene_.analysis == model::Analysis::Modes) f.fail("contact is not linearized for modes: use static or dynamic");
+    for (const Field& item : f.items()) {
+      item.expectMap({"name", "center", "radius", "speed"});
+      model::PulleyDesc p;
+      p.mark = item.mark();
+      const Field name = item.child("name");
+      p.name = name.text();
+      if (p.name.empty()) name.fail("must not be empty");
+      for (const model::PulleyDesc& other : scene_.pulleys)
+        if (other.name == p.name) name.fail("a second pulley named '" + p.name + "'");
+      p.center = readVector(item.child("center"), ctx_.dim);
+      p.radius = requirePositive(item.child("radius"));
+      if (const Field speed = item.child("speed"); speed.present()) p.speed = readTimeFunction(speed);
+      scene_.pulleys.push_back(std::move(p));
+    }
+  }
+
+  // contact: [{body, pulleys, stiffness, damping, belt_height, points, friction: {law, mu, slip_velocity}}].
+  void readContacts(const Field& f) {
+    if (scene_.pulleys.empty()) f.fail("contact needs pulleys: the scene has none (key 'pulleys')");
+    for (const Field& item : f.items()) {
+      item.expectMap({"body", "pulleys", "stiffness", "damping", "belt_height", "points", "friction"});
+      model::ContactDesc c;
+      c.mark = item.mark();
+      const BodyDesc& body = findBody(item.child("body"));
+      c.body = body.name;
+      if (elements::kindInfo(body.kind).materialBlock() >= 0)
+        item.child("body").fail("contact with ALE bodies is not built yet");
+      for (const model::ContactDesc& other : scene_.contacts)
+        if (other.body == c.body) item.child("body").fail("a second contact entry for body '" + c.body + "'");
+      if (const Field list = item.child("pulleys"); list.present()) {
+        for (const Field& p : list.items()) {
+          const std::string name = p.text();
+          bool found = false;
+          for (const model::PulleyDesc& pd : scene_.pulleys) found = found || pd.name == name;
+          if (!found) p.fail("no pulley named '" + printable(name) + "'");
+          if (std::find(c.pulleys.begin(), c.pulleys.end(), name) != c.pulleys.end()) p.fail("listed twice");
+          c.pulleys.push_back(name);
+        }
+      } else {
+        for (const model::PulleyDesc& pd : scene_.pulleys) c.pulleys.push_back(pd.name);
+      }
+      c.law.stiffness = requirePositive(item.child("stiffness"));
+      if (const Field d = item.child("damping"); d.present()) c.law.damping = requireNonNegative(d);
+      if (const Field h = item.child("belt_height"); h.present()) c.law.offset = 0.5 * requireNonNegative(h);
+      if (const Field n = item.child("points"); n.present()) c.points = requireIntInRange(n, 1, 8);
+      if (const Field fr = item.child("friction"); fr.present()) {
+        fr.expectMap({"law", "mu", "slip_velocity"});
+        const std::string law = fr.child("law").text();
+        if (law == "none") {
+          for (const char* key : {"mu", "slip_velocity"})
+            if (const Field k = fr.child(key); k.present()) k.fail("not used by law: none");
+        } else if (law == "coulomb") {
+          c.law.friction = contact::FrictionLaw::RegularizedCoulomb;
+          c.law.mu = requireNonNegative(fr.child("mu"));
+          if (const Field v = fr.child("slip_velocity"); v.present()) c.law.slipVelocity = requirePositive(v);
+        } else {
+          fr.child("law").fail("unknown friction law '" + printable(law) + "'; allowed: none, coulomb");
+        }
+      }
+      scene_.contacts.push_back(std::move(c));
     }
   }
 

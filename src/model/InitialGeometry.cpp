@@ -1,6 +1,8 @@
 #include "strand/model/InitialGeometry.hpp"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "strand/core/Error.hpp"
 
@@ -19,14 +21,89 @@ Vec3 unit(const Vec3& a) { return scale(1.0 / norm(a), a); }
 
 }  // namespace
 
+// The path from start around each circle to end. Circle i (centre c_i, radius rho_i, sense
+// sigma_i) has its centre at c_i - T = sigma_i rho_i n_L from a point T where the path touches it
+// (n_L: the left normal of the direction of travel). A tangent line from circle 1 to circle 2
+// (start and end are circles of radius 0) therefore has, with d = c_2 - c_1 = D (cos a, sin a) and
+// e = sigma_2 rho_2 - sigma_1 rho_1: direction angle a - asin(e / D), length sqrt(D^2 - e^2), and
+// it leaves circle 1 at T_1 = c_1 - sigma_1 rho_1 n_L.
+void InitialGeometry::buildWrap() {
+  auto fail = [&](const std::string& why) { throw InputError(_d.mark.where() + ": " + why); };
+  struct Circle {
+    Vec3 c;
+    double rho;
+    int sense;
+  };
+  std::vector<Circle> circles{{_d.start, 0.0, 1}};
+  for (const WrapTurn& w : _d.wrap) circles.push_back({w.center, w.radius, w.sense});
+  circles.push_back({_d.end, 0.0, 1});
+  std::vector<Vec3> leave(circles.size()), arrive(circles.size());
+  std::vector<Vec3> lineDir(circles.size());
+  std::vector<double> lineLength(circles.size());
+  for (size_t i = 0; i + 1 < circles.size(); ++i) {
+    const Circle& a = circles[i];
+    const Circle& b = circles[i + 1];
+    const Vec3 d = sub(b.c, a.c);
+    const double D = norm(d), e = b.sense * b.rho - a.sense * a.rho;
+    const std::string from = i == 0 ? "start" : "around[" + std::to_string(i - 1) + "]";
+    const std::string to = i + 2 == circles.size() ? "end" : "around[" + std::to_string(i) + "]";
+    if (!(std::fabs(e) < D))
+      fail("no tangent line from " + from + " to " + to + " in the given senses (one lies inside or on the other)");
+    const double phi = std::atan2(d[1], d[0]) - std::asin(e / D);
+    lineDir[i] = {std::cos(phi), std::sin(phi), 0.0};
+    const Vec3 left{-std::sin(phi), std::cos(phi), 0.0};
+    leave[i] = sub(a.c, scale(a.sense * a.rho, left));
+    lineLength[i] = std::sqrt(D * D - e * e);
+    arrive[i + 1] = add(leave[i], scale(lineLength[i], lineDir[i]));
+  }
+  const double twoPi = 2.0 * std::acos(-1.0);
+  _cumulative.assign(1, 0.0);
+  auto addPiece = [&](const WrapPiece& p, double length) {
+    _pieces.push_back(p);
+    _cumulative.push_back(_cumulative.back() + length);
+  };
+  for (size_t i = 0; i + 1 < circles.size(); ++i) {
+    if (i > 0) {  // the arc on circle i, from where the line arrives to where the next leaves
+      const Circle& c = circles[i];
+      const double in = std::atan2(arrive[i][1] - c.c[1], arrive[i][0] - c.c[0]);
+      const double out = std::atan2(leave[i][1] - c.c[1], leave[i][0] - c.c[0]);
+      double sweep = std::fmod(c.sense * (out - in) + 2.0 * twoPi, twoPi);
+      if (sweep > twoPi * (1.0 - 1e-12)) sweep = 0.0;  // touching: round-off below a full turn
+      sweep += twoPi * _d.wrap[i - 1].turns;
+      if (sweep > 0.0) {
+        WrapPiece arc;
+        arc.arc = true;
+        arc.center = c.c;
+        arc.radius = c.rho;
+        arc.angle0 = in;
+        arc.sense = c.sense;
+        addPiece(arc, c.rho * sweep);
+      }
+    }
+    if (lineLength[i] > 0.0) {
+      WrapPiece line;
+      line.start = leave[i];
+      line.direction = lineDir[i];
+      addPiece(line, lineLength[i]);
+    }
+  }
+  _length = _cumulative.back();
+  if (!(_length > 0.0)) fail("the wrap path has zero length");
+}
+
 InitialGeometry::InitialGeometry(const GeometryDesc& desc, int dimension, const Vec3& gravity) : _d(desc) {
   auto fail = [&](const std::string& why) { throw InputError(desc.mark.where() + ": " + why); };
   if (dimension == 2) {
     _d.start[2] = _d.end[2] = _d.center[2] = 0.0;
     for (auto& p : _d.points) p[2] = 0.0;
+    for (auto& w : _d.wrap) w.center[2] = 0.0;
     _d.normal = {0.0, 0.0, 1.0};
   }
   switch (_d.kind) {
+    case GeometryKind::Wrap:
+      if (dimension != 2) fail("a wrap path lies in the xy plane: only when dimension is 2");
+      buildWrap();
+      break;
     case GeometryKind::Line:
       _length = norm(sub(_d.end, _d.start));
       if (!(_length > 0.0)) fail("line has zero length");
@@ -88,6 +165,21 @@ InitialGeometry::InitialGeometry(const GeometryDesc& desc, int dimension, const 
 CurvePoint InitialGeometry::at(double x) const {
   CurvePoint p{};
   switch (_d.kind) {
+    case GeometryKind::Wrap: {
+      size_t k = 0;
+      while (k + 1 < _pieces.size() && x > _cumulative[k + 1]) ++k;
+      const WrapPiece& w = _pieces[k];
+      const double s = x - _cumulative[k];
+      if (!w.arc) {
+        p.t = w.direction;
+        p.r = add(w.start, scale(s, w.direction));
+        break;
+      }
+      const double th = w.angle0 + w.sense * s / w.radius;
+      p.r = add(w.center, Vec3{w.radius * std::cos(th), w.radius * std::sin(th), 0.0});
+      p.t = {-w.sense * std::sin(th), w.sense * std::cos(th), 0.0};
+      break;
+    }
     case GeometryKind::Line: {
       p.t = unit(sub(_d.end, _d.start));
       p.r = add(_d.start, scale(x, p.t));

@@ -123,6 +123,22 @@ Model::Model(const SceneDescription& scene) : _dim(scene.dimension), _gravity(sc
   addInitialVelocities(b);
   addJointEquations(b);             // 6. joint equations, checked at the initial state
   addCouplings();                   // 7. couplings: rigid bodies and joints
+  addContacts(scene);               // 8. belt-pulley contact (element-local: pulleys have no DOFs)
+}
+
+void Model::addContacts(const SceneDescription& scene) {
+  _pulleys = scene.pulleys;
+  for (const ContactDesc& c : scene.contacts) {
+    PulleyContactSet set;
+    for (size_t b = 0; b < _bodies.size(); ++b)
+      if (_bodies[b].name == c.body) set.body = static_cast<int>(b);
+    for (const std::string& name : c.pulleys)
+      for (size_t p = 0; p < _pulleys.size(); ++p)
+        if (_pulleys[p].name == name) set.pulleys.push_back(static_cast<int>(p));
+    set.law = c.law;
+    set.points = c.points;
+    _contacts.push_back(std::move(set));
+  }
 }
 
 int Model::numElements() const {
@@ -140,6 +156,8 @@ bool Model::constantMass() const {
 bool Model::velocityDependent() const {
   for (const Body& b : _bodies)
     if (b.velocityDependent) return true;
+  for (const PulleyContactSet& c : _contacts)  // contact damping and friction depend on the belt's velocity
+    if (c.law.damping > 0.0 || c.law.friction != contact::FrictionLaw::None) return true;
   return false;
 }
 

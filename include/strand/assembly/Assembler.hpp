@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "strand/contact/PulleyContact.hpp"
 #include "strand/model/DofMap.hpp"
 #include "strand/model/Model.hpp"
 
@@ -22,6 +23,7 @@ namespace strand::assembly {
 class ElementFamily;
 class Multibody;
 class NodalMomentLoads;
+class PulleyContacts;
 
 // What the rows of supported DOFs hold in a residual: the unit-row convention (the DOF value), or
 // the assembled f_int - f_ext, i.e. (with M a added) the force the support exerts on the body.
@@ -122,6 +124,14 @@ public:
   PetscReal coordinateNorm() const;
   // Strain energy (all ranks get the sum).
   PetscErrorCode strainEnergy(Vec X, PetscReal* U);
+  // The belt-pulley contact points this rank assembles (Model::contacts(); V may be null: at rest;
+  // statics use t = 0): per body, element, pulley and Gauss point, what the law found there.
+  struct ContactPointOut {
+    int body, element, pulley, point;
+    double r[2];  // position
+    contact::ContactPoint state;
+  };
+  PetscErrorCode contactPoints(Vec X, Vec V, PetscReal t, std::vector<ContactPointOut>& out);
   // Index set of the free (unsupported) DOFs owned by this rank, global numbering.
   PetscErrorCode freeDofs(IS* is) const;
   // Coordinates q = q0 + X as a full-length array in model numbering on rank 0 (empty elsewhere).
@@ -158,7 +168,7 @@ private:
   PetscErrorCode addGhostsToOwners(Vec work);
   // R = the owned sum of add(x, w, r) over the ghosted local forms of X and W (joint terms).
   PetscErrorCode jointVector(Vec X, Vec W, const std::function<void(const double*, const double*, double*)>& add, Vec R);
-  PetscErrorCode assembleResidual(Vec X, Vec V, PetscReal loadFactor, Vec R, SupportRows rows);
+  PetscErrorCode assembleResidual(Vec X, Vec V, PetscReal t, PetscReal loadFactor, Vec R, SupportRows rows);
   PetscErrorCode assembleWithSupportDiagonal(Mat J) const;
 
   const model::Model& _model;
@@ -166,6 +176,7 @@ private:
   std::vector<std::unique_ptr<ElementFamily>> _families;  // one per element group (kind)
   std::unique_ptr<NodalMomentLoads> _moments;
   std::unique_ptr<Multibody> _multibody;
+  std::unique_ptr<PulleyContacts> _contacts;
   PetscReal _constraintScale = 1.0;
   std::vector<char> _multiplierOwned;       // per owned DOF
   std::vector<double> _v0Owned;             // initial velocities, owned DOFs

@@ -26,6 +26,7 @@
 // d = r - c and u = v - v_c: derivatives in the belt's r and v are those in d and u, in the pulley's
 // c and v_c their negatives.
 #pragma once
+#include <algorithm>
 #include <cmath>
 
 #include "strand/math/Dual.hpp"
@@ -54,6 +55,7 @@ struct PulleyState {
 // What the law found at a point (for output and the tangents).
 struct ContactPoint {
   bool touching = false;  // p > 0
+  bool closed = false;    // the tangents are those of a closed contact (touching, or at the surface)
   double pressure = 0.0;  // p [N/m]
   double slip = 0.0;      // s [m/s]
   double friction = 0.0;  // f_t [N/m]
@@ -99,12 +101,17 @@ inline ContactPoint pointTangent(const ContactLaw& law, const PulleyState& pl, c
   const double d[2] = {r[0] - pl.c[0], r[1] - pl.c[1]};
   const double rho = std::hypot(d[0], d[1]);
   const double g = rho - (pl.radius + law.offset);
-  if (!(g < 0.0) || !(rho > 0.0)) return out;
+  // The force is zero at g >= 0; its derivative there is taken from the closed side for points
+  // within round-off of the surface (|g| <= 1e-10 (R + offset)), so that a belt laid exactly on a
+  // pulley starts with the contact's stiffness in the Newton matrix instead of none.
+  const double closedBand = 1e-10 * (pl.radius + law.offset);
+  if (!(g < closedBand) || !(rho > 0.0)) return out;
   const double n[2] = {d[0] / rho, d[1] / rho}, t[2] = {-n[1], n[0]};
   const double u[2] = {v[0] - pl.vc[0], v[1] - pl.vc[1]};
   const double gdot = n[0] * u[0] + n[1] * u[1];
-  const double p = -law.stiffness * g - law.damping * gdot;
-  if (!(p > 0.0)) return out;
+  const double pTrial = -law.stiffness * g - law.damping * gdot;
+  if (!(pTrial > 0.0) && !(g > -closedBand)) return out;  // separating: no force, no stiffness
+  const double p = std::max(pTrial, 0.0);
   const double s = t[0] * u[0] + t[1] * u[1] - pl.omega * rho;
   double phi = 0.0, dphi = 0.0;
   if (law.friction == FrictionLaw::RegularizedCoulomb) {
@@ -112,7 +119,7 @@ inline ContactPoint pointTangent(const ContactLaw& law, const PulleyState& pl, c
     dphi = (1.0 - phi * phi) / law.slipVelocity;
   }
   const double ft = -law.mu * p * phi;
-  out = {true, p, s, ft};
+  out = {p > 0.0, true, p, s, ft};
   for (int i = 0; i < 2; ++i) f[i] = p * n[i] + ft * t[i];
 
   double P[4], EP[4];  // P = I - n n^T, E P (E = [[0, -1], [1, 0]])

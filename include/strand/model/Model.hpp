@@ -124,6 +124,15 @@ struct NodalMomentLoad {
   Vec3 moment;
 };
 
+// Distributed contact of one body with pulleys (issue 34, contact/PulleyContact.hpp): the law,
+// integrated with `points` Gauss points per element against each listed pulley.
+struct PulleyContactSet {
+  int body = 0;                // index into Model::bodies()
+  std::vector<int> pulleys;    // indices into Model::pulleys()
+  contact::ContactLaw law;
+  int points = 4;
+};
+
 class Model {
 public:
   explicit Model(const SceneDescription& scene);
@@ -172,6 +181,9 @@ public:
   bool hasLoadFunction() const { return _loadFunction.has_value(); }
   double loadFactor(double t) const { return _loadFunction ? _loadFunction->at(t).f : 1.0; }
   const Vec3& gravity() const { return _gravity; }  // also acts on point masses
+  // Pulleys (prescribed rotation, no DOFs) and the bodies in contact with them.
+  const std::vector<PulleyDesc>& pulleys() const { return _pulleys; }
+  const std::vector<PulleyContactSet>& contacts() const { return _contacts; }
   // Rotating frame (absent: omega 0). The angular speed may be changed between solves (sweeps).
   const RotationDesc& rotation() const { return _rotation; }
   void setAngularSpeed(double omega) { _rotation.omega = omega; }
@@ -191,6 +203,7 @@ private:
   void addInitialVelocities(Build& b);
   void addJointEquations(Build& b);
   void addCouplings();
+  void addContacts(const SceneDescription& scene);
 
   int _dim = 3, _numBlocks = 0;
   std::vector<Body> _bodies;
@@ -208,6 +221,8 @@ private:
   std::vector<SourceMark> _hubClampsHoldingStretch;
   std::vector<PrescribedCoordinate> _prescribed;
   Vec3 _gravity{};
+  std::vector<PulleyDesc> _pulleys;
+  std::vector<PulleyContactSet> _contacts;
   RotationDesc _rotation;
   ReferenceScales _scales;
 };

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "strand/contact/PulleyContact.hpp"
 #include "strand/elements/ElementKind.hpp"
 #include "strand/model/TimeFunction.hpp"
 
@@ -24,7 +25,16 @@ struct SourceMark {
 };
 
 enum class Analysis { Static, Modes, Dynamic };
-enum class GeometryKind { Line, Arc, Polyline, Catenary };
+enum class GeometryKind { Line, Arc, Polyline, Catenary, Wrap };
+
+// One circle a `wrap` path turns around: centre, the radius of the path on it (a pulley's radius
+// plus the wrap's offset), its sense and the full turns it adds to the arc.
+struct WrapTurn {
+  Vec3 center{};
+  double radius = 0.0;
+  int sense = 1;  // +1 counterclockwise, -1 clockwise (seen from +z)
+  int turns = 0;  // extra full turns on this circle
+};
 
 struct GeometryDesc {
   GeometryKind kind = GeometryKind::Line;
@@ -39,6 +49,8 @@ struct GeometryDesc {
   Vec3 normal{0.0, 0.0, 1.0};
   // polyline: corner points (from `points`, or from a CSV `file` of x,y[,z] rows)
   std::vector<Vec3> points;
+  // wrap (2D): from `start`, along tangent lines and arcs around each circle in turn, to `end`
+  std::vector<WrapTurn> wrap;
 };
 
 struct PointMassDesc {
@@ -320,6 +332,26 @@ struct HubBeamDesc {
   SourceMark mark;
 };
 
+// A pulley (issue 34): a rigid circle of `radius` about a fixed `center`, turning at speed(t)
+// [rad/s, counterclockwise; zero: a fixed drum]. Its speed is prescribed: the pulley has no DOFs.
+struct PulleyDesc {
+  std::string name;
+  SourceMark mark;
+  Vec3 center{};
+  double radius = 0.0;
+  TimeFunction speed;
+};
+
+// Distributed contact between one body and pulleys (contact/PulleyContact.hpp): the law, and the
+// Gauss points per element along which it is integrated.
+struct ContactDesc {
+  SourceMark mark;
+  std::string body;
+  std::vector<std::string> pulleys;  // every pulley when the scene lists none
+  contact::ContactLaw law;
+  int points = 4;
+};
+
 struct SceneDescription {
   std::string file;  // path of the scene file
   std::vector<std::string> inputFiles;  // the other files it reads (polyline CSV), as opened
@@ -332,6 +364,8 @@ struct SceneDescription {
   std::vector<JunctionDesc> junctions;
   std::vector<RigidBodyDesc> rigidBodies;
   std::vector<JointDesc> joints;
+  std::vector<PulleyDesc> pulleys;
+  std::vector<ContactDesc> contacts;
   LoadsDesc loads;
   StaticDesc statics;
   ModesDesc modes;
