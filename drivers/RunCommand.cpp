@@ -200,6 +200,24 @@ private:
     _writer->writeFrame(time, frames);
   }
 
+  // /series/pulley_<name>_{fx, fy, torque, speed}: what the belts exert on each pulley (force, torque
+  // about its centre, counterclockwise) and its speed; statics: the belt at rest, speeds at t = 0.
+  PetscErrorCode writePulleySeries(Vec X, Vec V, double t) {
+    PetscFunctionBeginUser;
+    const std::vector<model::PulleyDesc>& pulleys = _problem.model().pulleys();
+    if (pulleys.empty()) PetscFunctionReturn(0);
+    std::vector<double> load;
+    PetscCall(_problem.assembler().pulleyLoads(X, V, t, load));
+    for (size_t p = 0; p < pulleys.size(); ++p) {
+      const std::string stem = "pulley_" + pulleys[p].name + "_";
+      PetscCallCXX(_writer->writeScalarSeries(stem + "fx", load[3 * p]));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "fy", load[3 * p + 1]));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "torque", load[3 * p + 2]));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "speed", pulleys[p].speed.at(t).f));
+    }
+    PetscFunctionReturn(0);
+  }
+
   int staticSolve(solvers::StaticSolver& solver, Vec X, std::string* failure) {
     solver.setStopCheck([] { return stopSignal() != 0; });
     int lastStep = 0;
@@ -218,6 +236,7 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("residual_norm", s.residualNorm));
       PetscCallCXX(_writer->writeScalarSeries("newton_energy_ratio", s.energyRatio));
       PetscCall(_probes->write(*_writer, s.loadFactor, Xs, nullptr, nullptr));
+      PetscCall(writePulleySeries(Xs, nullptr, 0.0));
       PetscFunctionReturn(0);
     };
     const std::string error = guardSolve(_comm, [&] { return solver.solve(X, onStep, failure); });
@@ -321,6 +340,7 @@ private:
           PetscCallCXX(_writer->writeScalarSeries("rigid_" + rb.name + "_phi", r ? r[0] : 0.0));
         }
       }
+      PetscCall(writePulleySeries(Xs, Vs, s.time));
       PetscCallCXX(_writer->writeScalarSeries("energy_balance", s.energy()));
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
       PetscCallCXX(_writer->writeScalarSeries("time_step", s.timeStep));

@@ -584,6 +584,20 @@ PetscErrorCode Assembler::contactPoints(Vec X, Vec V, PetscReal t, std::vector<C
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<double>& load) {
+  PetscFunctionBeginUser;
+  LocalRead x, v;
+  PetscCall(beginLocal(X, _xWork, &x));
+  if (V) PetscCall(beginLocal(V, _vWork, &v));
+  std::vector<double> mine(3 * _model.pulleys().size(), 0.0);
+  _contacts->pulleyLoads(x.a, V ? v.a : nullptr, t, mine.data());
+  PetscCall(endLocal(&x));
+  if (V) PetscCall(endLocal(&v));
+  load.assign(mine.size(), 0.0);
+  PetscCallMPI(MPI_Allreduce(mine.data(), load.data(), static_cast<int>(mine.size()), MPI_DOUBLE, MPI_SUM, _dofs.comm()));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::gatherToRoot(Vec X, std::vector<double>& out) {
   PetscFunctionBeginUser;
   PetscCall(toModelOrder(X, out));

@@ -143,6 +143,26 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
   PetscFunctionReturn(0);
 }
 
+void PulleyContacts::pulleyLoads(const double* x, const double* v, double t, double* load) const {
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t);
+  for (const LocalBody& b : _bodies) {
+    const model::PulleyContactSet& set = _model.contacts()[b.set];
+    for (int k = 0; k < static_cast<int>(b.elements.size()); ++k)
+      for (int g = 0; g < static_cast<int>(b.weight.size()); ++g) {
+        double rg[2], vg[2];
+        pointState(b, k, g, x, v, rg, vg);
+        for (int p : set.pulleys) {
+          double f[2];
+          if (!contact::pointForce(set.law, pulleys[p], rg, vg, f)) continue;
+          const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
+          load[3 * p] -= b.weight[g] * f[0];
+          load[3 * p + 1] -= b.weight[g] * f[1];
+          load[3 * p + 2] -= b.weight[g] * (d[0] * f[1] - d[1] * f[0]);
+        }
+      }
+  }
+}
+
 std::vector<PulleyContacts::PointState> PulleyContacts::points(const double* x, const double* v, double t) const {
   std::vector<PointState> out;
   const std::vector<contact::PulleyState> pulleys = pulleysAt(t);

@@ -31,6 +31,10 @@ public:
   PetscErrorCode jacobian(const double* x, const double* v, double t, double shiftV, Mat J, Mat D,
                           const std::vector<char>& fixed) const;
 
+  // load[3 p .. 3 p + 2] += what this rank's contact points exert on pulley p: force x, y and the
+  // torque about its centre (counterclockwise positive), sum_g weight_g (-f, (d x -f)_z).
+  void pulleyLoads(const double* x, const double* v, double t, double* load) const;
+
   // What a contact point found, for output: per local body, element and pulley, the point states.
   struct PointState {
     int body, element, pulley, point;  // model body, element index in it, pulley, Gauss point

@@ -455,6 +455,30 @@ TEST(Cli, ProbesOnRigidAndCableBodiesInTheirFramesAgreeOnOneAndTwoRanks) {
 }
 
 
+// meshes/capstan.yaml: the pulley series. The rope's pull on the drum is -(T1 + T2) along y and its
+// torque (T1 - T2) r with T1 = T2 exp(mu pi) (tests/verification/test_capstan.cpp checks the
+// tensions and pressures); one and two ranks agree.
+TEST(Cli, CapstanSceneWritesThePulleysLoadOnOneAndTwoRanks) {
+  const fs::path dir = scratchDir("capstan");
+  const std::string scene = sourceDir() + "/meshes/capstan.yaml";
+  auto one = runCommand(strandBinary() + " run " + scene + " -o " + (dir / "c1.h5").string());
+  ASSERT_EQ(one.exitCode, 0) << one.output;
+  auto two = runCommand(twoRanks() + strandBinary() + " run " + scene + " -o " + (dir / "c2.h5").string());
+  ASSERT_EQ(two.exitCode, 0) << two.output;
+  if (!haveH5py()) GTEST_SKIP() << "no h5py";
+  const std::string check =
+      "import h5py, numpy as np\n"
+      "a = h5py.File('" + (dir / "c1.h5").string() + "')['series']; b = h5py.File('" + (dir / "c2.h5").string() + "')['series']\n"
+      "T2 = 100.0; T1 = T2 * np.exp(0.5 * np.pi)\n"
+      "fy = abs(a['pulley_drum_fy'][-1] / -(T1 + T2) - 1); tq = abs(a['pulley_drum_torque'][-1] / ((T1 - T2) * 0.5) - 1)\n"
+      "ranks = max(abs(a[k][-1] - b[k][-1]) / max(1.0, abs(a[k][-1])) for k in a if k.startswith('pulley_'))\n"
+      "print('fy %.1e torque %.1e ranks %.1e' % (fy, tq, ranks))\n"
+      "print('PULLEY_OK' if fy < 1e-3 and tq < 1e-3 and ranks < 1e-8 else 'PULLEY_BAD')\n";
+  auto c = python(dir, check, "");
+  EXPECT_NE(c.output.find("PULLEY_OK"), std::string::npos) << c.output;
+  fs::remove_all(dir);
+}
+
 // meshes/compound-pendulum.yaml: rigid rod on a revolute joint. Verification: at the half period
 // 2 sqrt(I_O / (m g l/2)) K(sin 45 deg) = 0.96667 s the rod is horizontal on the other side
 // (phi = -pi; tests/verification/test_multibody.cpp checks the equation of motion); here the CLI

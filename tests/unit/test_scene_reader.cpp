@@ -12,6 +12,7 @@
 #include "strand/core/Error.hpp"
 #include "strand/elements/ElementRegistry.hpp"
 #include "strand/io/SceneReader.hpp"
+#include "strand/model/InitialGeometry.hpp"
 
 namespace fs = std::filesystem;
 using namespace strand;
@@ -1314,4 +1315,57 @@ TEST(SceneReader, ProbesAreReadAndCheckedWhereTheyAreWritten) {
                         "support forces are written by dynamic runs"));
   EXPECT_TRUE(failsWith(kBase3d + "probes:\n  - {name: p, body: cable, node: 0}\n  - {name: p, body: cable, node: 1}\n", 15,
                         "probes[1].name", "a second probe named 'p'"));
+}
+
+// requirement (issue 34): pulleys, contact and wrap paths are read with their values; a wrong one
+// names file, line, key and reason.
+TEST(SceneReader, PulleysContactAndWrapPathsAreReadAndChecked) {
+  const std::string head =
+      "analysis: static\n"                                                                  // 1
+      "dimension: 2\n"                                                                      // 2
+      "pulleys:\n"                                                                          // 3
+      "  - {name: drum, center: [0, 0], radius: 0.5, speed: -1}\n"                          // 4
+      "bodies:\n"                                                                           // 5
+      "  - name: rope\n"                                                                    // 6
+      "    element: AncfCable2d\n"                                                          // 7
+      "    elements: 20\n"                                                                  // 8
+      "    section: {E: 1e9, A: 1e-4, I: 1e-12, rho: 1000}\n";                              // 9
+  const std::string wrap = "    geometry: {kind: wrap, start: [-0.5, -2], end: [0.5, -2], around: [{pulley: drum, sense: cw}]}\n";  // 10
+  const std::string contact =
+      "contact:\n"                                                                          // 11
+      "  - {body: rope, stiffness: 1e7, belt_height: 0.002, points: 3, friction: {law: coulomb, mu: 0.4}}\n";  // 12
+  const SceneDescription s = parseScene(head + wrap + contact, "scene.yaml");
+  ASSERT_EQ(s.pulleys.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.pulleys[0].speed.at(3.0).f, -1.0);
+  ASSERT_EQ(s.contacts.size(), 1u);
+  EXPECT_EQ(s.contacts[0].pulleys, std::vector<std::string>{"drum"});
+  EXPECT_DOUBLE_EQ(s.contacts[0].law.offset, 0.001);
+  EXPECT_EQ(s.contacts[0].points, 3);
+  EXPECT_EQ(s.contacts[0].law.friction, strand::contact::FrictionLaw::RegularizedCoulomb);
+  EXPECT_DOUBLE_EQ(s.contacts[0].law.mu, 0.4);
+  EXPECT_DOUBLE_EQ(s.contacts[0].law.slipVelocity, 1e-3);
+  ASSERT_EQ(s.bodies[0].geometry.wrap.size(), 1u);
+  EXPECT_EQ(s.bodies[0].geometry.wrap[0].sense, -1);
+  // a wrap path of two tangent lines and a half circle: 2 + pi/2 + 2
+  strand::model::InitialGeometry g(s.bodies[0].geometry, 2, {});
+  EXPECT_NEAR(g.length(), 4.0 + std::acos(-1.0) * 0.5, 1e-12);
+  EXPECT_NEAR(g.at(2.0 + std::acos(-1.0) * 0.25).r[1], 0.5, 1e-12);  // the top of the drum
+  EXPECT_NEAR(g.at(2.0 + std::acos(-1.0) * 0.25).t[0], 1.0, 1e-12);  // heading +x there (clockwise)
+
+  EXPECT_TRUE(failsWith(head + edit(wrap, "pulley: drum", "pulley: wheel") + contact, 10, "bodies[0].geometry.around[0].pulley",
+                        "no pulley named 'wheel'; pulleys: drum"));
+  EXPECT_TRUE(failsWith(head + edit(wrap, "sense: cw", "sense: left") + contact, 10, "bodies[0].geometry.around[0].sense",
+                        "expected cw or ccw"));
+  EXPECT_TRUE(failsWith(head + edit(wrap, "start: [-0.5, -2]", "start: [0.1, 0]") + contact, 10, "bodies[0].geometry",
+                        "no tangent line from start to around[0]"));
+  EXPECT_TRUE(failsWith(head + wrap, 3, "pulleys", "pulleys act through contact"));
+  EXPECT_TRUE(failsWith(head + wrap + edit(contact, "law: coulomb, mu: 0.4", "law: stribeck"), 12, "contact[0].friction.law",
+                        "unknown friction law 'stribeck'; allowed: none, coulomb"));
+  EXPECT_TRUE(failsWith(head + wrap + edit(contact, "stiffness: 1e7", "stiffness: 0"), 12, "contact[0].stiffness",
+                        "must be positive"));
+  EXPECT_TRUE(failsWith(head + wrap + edit(contact, "body: rope", "body: belt"), 12, "contact[0].body", "no body named 'belt'"));
+  EXPECT_TRUE(failsWith(edit(head, "speed: -1}", "speed: -1}\n  - {name: drum, center: [1, 0], radius: 0.5}") + wrap + contact,
+                        5, "pulleys[1].name", "a second pulley named 'drum'"));
+  EXPECT_TRUE(failsWith(edit(head + wrap + contact, "dimension: 2", "dimension: 3"), 3, "pulleys",
+                        "only when dimension is 2"));
 }

@@ -132,6 +132,9 @@ public:
     contact::ContactPoint state;
   };
   PetscErrorCode contactPoints(Vec X, Vec V, PetscReal t, std::vector<ContactPointOut>& out);
+  // What the belts exert on each pulley (Model::pulleys()): load[3 p .. 3 p + 2] = force x, y [N]
+  // and torque about its centre [N m, counterclockwise]; collective, every rank gets the sums.
+  PetscErrorCode pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<double>& load);
   // Index set of the free (unsupported) DOFs owned by this rank, global numbering.
   PetscErrorCode freeDofs(IS* is) const;
   // Coordinates q = q0 + X as a full-length array in model numbering on rank 0 (empty elsewhere).
