@@ -584,6 +584,21 @@ PetscErrorCode Assembler::contactPoints(Vec X, Vec V, PetscReal t, std::vector<C
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::contactForce(Vec X, Vec V, PetscReal t, Vec F) {
+  PetscFunctionBeginUser;
+  LocalRead x, v;
+  LocalSum f;
+  PetscCall(beginLocal(X, _xWork, &x));
+  if (V) PetscCall(beginLocal(V, _vWork, &v));
+  PetscCall(beginLocalSum(F, {X, V}, &f));
+  _contacts->residual(x.a, V ? v.a : nullptr, t, f.a, -1.0);
+  PetscCall(endLocalSum(&f));
+  PetscCall(endLocal(&x));
+  if (V) PetscCall(endLocal(&v));
+  PetscCall(deliver(f, F));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<double>& load) {
   PetscFunctionBeginUser;
   LocalRead x, v;

@@ -68,7 +68,7 @@ void PulleyContacts::pointState(const LocalBody& b, int k, int g, const double* 
   }
 }
 
-void PulleyContacts::residual(const double* x, const double* v, double t, double* r) const {
+void PulleyContacts::residual(const double* x, const double* v, double t, double* r, double scale) const {
   if (_bodies.empty()) return;
   const std::vector<contact::PulleyState> pulleys = pulleysAt(t);
   for (const LocalBody& b : _bodies) {
@@ -84,7 +84,7 @@ void PulleyContacts::residual(const double* x, const double* v, double t, double
           if (!contact::pointForce(set.law, pulleys[p], rg, vg, f)) continue;
           const double* w = &b.w[static_cast<size_t>(g) * b.stride];
           for (int a = 0; a < b.stride; ++a)
-            for (int i = 0; i < 2; ++i) r[lb[a] * 2 + i] -= b.weight[g] * w[a] * f[i];
+            for (int i = 0; i < 2; ++i) r[lb[a] * 2 + i] -= scale * b.weight[g] * w[a] * f[i];
         }
       }
     }

@@ -24,8 +24,8 @@ public:
   PulleyContacts(const model::Model& model, const model::DofMap& dofs, const std::vector<double>& q0Local);
   bool empty() const { return _bodies.empty(); }
 
-  // r -= Q (ghosted-local arrays; x displacements, v velocities or null: the belt at rest).
-  void residual(const double* x, const double* v, double t, double* r) const;
+  // r -= scale Q (ghosted-local arrays; x displacements, v velocities or null: the belt at rest).
+  void residual(const double* x, const double* v, double t, double* r, double scale = 1.0) const;
   // J += -dQ/dq - shiftV dQ/dv, and D += -dQ/dv when D is given (rows and columns of fixed DOFs
   // left out).
   PetscErrorCode jacobian(const double* x, const double* v, double t, double shiftV, Mat J, Mat D,

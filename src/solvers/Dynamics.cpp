@@ -113,7 +113,16 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   _floor.coordinateNorm = assembler.coordinateNorm();
   _floor.keptTolerance = 1e-3;  // a kept matrix's correction: at most 1e-3 of the first (NewtonConvergence.cpp)
   PetscCallAbort(comm, SNESSetConvergenceTest(snes, roundoffFloorConvergence, &_floor, nullptr));
-  PetscCallAbort(comm, useFullNewtonStep(snes, &_floor));  // no residual the step test discards
+  if (assembler.hasContact()) {
+    // Belt-pulley contact opens and closes, and regularized friction turns steeply near zero slip:
+    // full Newton steps can cycle between two iterates (the dynamic capstan, dt 2e-3 s: |R| 136,
+    // 283, 136, ... for 25 iterations). A backtracking line search settles them.
+    SNESLineSearch ls;
+    PetscCallAbort(comm, SNESGetLineSearch(snes, &ls));
+    PetscCallAbort(comm, SNESLineSearchSetType(ls, SNESLINESEARCHBT));
+  } else {
+    PetscCallAbort(comm, useFullNewtonStep(snes, &_floor));  // no residual the step test discards
+  }
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
   PetscCallAbort(comm, setDirectSolverDefaults(ksp, _constrained));
   if (_constrainedSpace) {  // the assembled 2n x 2n Newton matrix, by the direct solver above
@@ -448,6 +457,20 @@ PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, P
     PetscCall(_asm.residual(X, nullptr, t, _w2, assembly::SupportRows::Reaction));
     PetscCall(VecAXPY(_w1, -1.0, _w2));
     PetscCall(VecDot(_w1, V, damping));
+  }
+  // Belt-pulley contact is an applied force: its power v . Q(X, V, t) counts as load work (driven
+  // pulleys feed the belt, friction and contact damping take energy out), and its velocity-dependent
+  // part, -v . (Q(X, V) - Q(X, 0)) in the damping power above, is taken back out of that.
+  if (_asm.hasContact()) {
+    PetscScalar withV = 0.0, atRest = 0.0;
+    PetscCall(_asm.contactForce(X, V, t, _w1));
+    PetscCall(VecDot(_w1, V, &withV));
+    *load += withV;
+    if (_damped) {
+      PetscCall(_asm.contactForce(X, nullptr, t, _w2));
+      PetscCall(VecDot(_w2, V, &atRest));
+      *damping += withV - atRest;
+    }
   }
   if (_moving) {
     if (_firstOrder) PetscCall(supportForceAt(t, X, V, _w1));

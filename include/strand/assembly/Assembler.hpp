@@ -132,6 +132,9 @@ public:
     contact::ContactPoint state;
   };
   PetscErrorCode contactPoints(Vec X, Vec V, PetscReal t, std::vector<ContactPointOut>& out);
+  // F = Q, the contact forces on the belts (every row; V may be null: at rest). residual() holds -Q.
+  bool hasContact() const { return !_model.contacts().empty(); }
+  PetscErrorCode contactForce(Vec X, Vec V, PetscReal t, Vec F);
   // What the belts exert on each pulley (Model::pulleys()): load[3 p .. 3 p + 2] = force x, y [N]
   // and torque about its centre [N m, counterclockwise]; collective, every rank gets the sums.
   PetscErrorCode pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<double>& load);
