@@ -30,6 +30,7 @@ KindInfo infoOf() {
   i.layout = &K::kNodeLayout[0];
   i.orientationBlock = K::kOrientationBlock;
   i.stressFreeInitial = K::kStressFreeInitial;
+  i.initialStretch = K::kInitialStretch;
   i.constantMass = K::kConstantMass;
   i.sectionKeys = &K::kSectionKeys[0];
   i.sectionKeyCount = static_cast<int>(sizeof(K::kSectionKeys) / sizeof(K::kSectionKeys[0]));

@@ -613,12 +613,19 @@ void readCatenary(const Field& f, const Context& ctx, GeometryDesc& g) {
 // from each pulley's surface: half the belt's height).
 void readWrap(const Field& f, const Context& ctx, GeometryDesc& g) {
   if (ctx.dim != 2) f.child("kind").fail("a wrap path lies in the xy plane: only when dimension is 2");
-  g.start = readVector(f.child("start"), ctx.dim);
-  g.end = readVector(f.child("end"), ctx.dim);
+  if (const Field c = f.child("closed"); c.present()) g.closed = c.boolean();
+  if (g.closed) {
+    for (const char* key : {"start", "end"})
+      if (const Field k = f.child(key); k.present()) k.fail("a closed path has no ends: leave out start and end");
+  } else {
+    g.start = readVector(f.child("start"), ctx.dim);
+    g.end = readVector(f.child("end"), ctx.dim);
+  }
   double offset = 0.0;
   if (const Field o = f.child("offset"); o.present()) offset = requireNonNegative(o);
   const std::vector<Field> around = f.child("around").items();
   if (around.empty()) f.child("around").fail("needs at least one pulley");
+  if (g.closed && around.size() < 2) f.child("around").fail("a closed path goes around at least two pulleys");
   for (const Field& item : around) {
     item.expectMap({"pulley", "sense", "turns"});
     const Field name = item.child("pulley");
@@ -654,7 +661,7 @@ const GeometryKindInfo kGeometryKinds[] = {
     {"arc", GeometryKind::Arc, {"kind", "center", "radius", "start_angle", "end_angle", "normal"}, readArc},
     {"polyline", GeometryKind::Polyline, {"kind", "points", "file"}, readPolyline},
     {"catenary", GeometryKind::Catenary, {"kind", "start", "end", "length", "sag_direction"}, readCatenary},
-    {"wrap", GeometryKind::Wrap, {"kind", "start", "end", "around", "offset"}, readWrap},
+    {"wrap", GeometryKind::Wrap, {"kind", "start", "end", "around", "offset", "closed"}, readWrap},
 };
 
 GeometryDesc readGeometry(const Field& f, const Context& ctx) {
@@ -841,7 +848,7 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
     readPointMasses(masses, body);
   }
   const bool ale = kind.materialBlock() >= 0;
-  for (const char* key : {"material_motion", "payout", "initial_stretch", "material_nodes"})
+  for (const char* key : {"material_motion", "payout", "material_nodes"})
     if (const Field k = f.child(key); k.present() && !ale)
       k.fail(std::string(kind.name) + " has no material coordinates (an ALE kind has: " + aleKindNames() + ")");
   if (const Field motion = f.child("material_motion"); motion.present()) {
@@ -853,7 +860,10 @@ BodyDesc readBody(const Field& f, const Context& ctx) {
     body.hasPayout = true;
     body.payout = readTimeFunction(payout);
   }
-  if (const Field stretch = f.child("initial_stretch"); stretch.present()) body.initialStretch = requirePositive(stretch);
+  if (const Field stretch = f.child("initial_stretch"); stretch.present()) {
+    if (!kind.initialStretch) stretch.fail(std::string("a pretensioned initial state of ") + kind.name + " is not built yet");
+    body.initialStretch = requirePositive(stretch);
+  }
   if (const Field nodes = f.child("material_nodes"); nodes.present()) {
     if (body.hasMaterialMotion || body.hasPayout)
       nodes.fail("give either 'material_nodes' or 'material_motion' / 'payout', not both");

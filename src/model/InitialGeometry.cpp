@@ -32,23 +32,28 @@ void InitialGeometry::buildWrap() {
   struct Circle {
     Vec3 c;
     double rho;
-    int sense;
+    int sense, turns;
+    std::string name;
   };
-  std::vector<Circle> circles{{_d.start, 0.0, 1}};
-  for (const WrapTurn& w : _d.wrap) circles.push_back({w.center, w.radius, w.sense});
-  circles.push_back({_d.end, 0.0, 1});
-  std::vector<Vec3> leave(circles.size()), arrive(circles.size());
-  std::vector<Vec3> lineDir(circles.size());
-  std::vector<double> lineLength(circles.size());
-  for (size_t i = 0; i + 1 < circles.size(); ++i) {
+  // open: start, the circles, end (points are circles of radius 0); closed: the circles, then the
+  // first again
+  std::vector<Circle> circles;
+  if (!_d.closed) circles.push_back({_d.start, 0.0, 1, 0, "start"});
+  for (size_t k = 0; k < _d.wrap.size(); ++k)
+    circles.push_back({_d.wrap[k].center, _d.wrap[k].radius, _d.wrap[k].sense, _d.wrap[k].turns,
+                       "around[" + std::to_string(k) + "]"});
+  if (_d.closed) circles.push_back(circles.front());
+  else circles.push_back({_d.end, 0.0, 1, 0, "end"});
+  const size_t m = circles.size();
+  std::vector<Vec3> leave(m), arrive(m), lineDir(m);
+  std::vector<double> lineLength(m, 0.0);
+  for (size_t i = 0; i + 1 < m; ++i) {
     const Circle& a = circles[i];
     const Circle& b = circles[i + 1];
     const Vec3 d = sub(b.c, a.c);
     const double D = norm(d), e = b.sense * b.rho - a.sense * a.rho;
-    const std::string from = i == 0 ? "start" : "around[" + std::to_string(i - 1) + "]";
-    const std::string to = i + 2 == circles.size() ? "end" : "around[" + std::to_string(i) + "]";
     if (!(std::fabs(e) < D))
-      fail("no tangent line from " + from + " to " + to + " in the given senses (one lies inside or on the other)");
+      fail("no tangent line from " + a.name + " to " + b.name + " in the given senses (one lies inside or on the other)");
     const double phi = std::atan2(d[1], d[0]) - std::asin(e / D);
     lineDir[i] = {std::cos(phi), std::sin(phi), 0.0};
     const Vec3 left{-std::sin(phi), std::cos(phi), 0.0};
@@ -56,36 +61,50 @@ void InitialGeometry::buildWrap() {
     lineLength[i] = std::sqrt(D * D - e * e);
     arrive[i + 1] = add(leave[i], scale(lineLength[i], lineDir[i]));
   }
+  if (_d.closed) arrive[0] = arrive[m - 1];  // the last line comes back to the first circle
   const double twoPi = 2.0 * std::acos(-1.0);
   _cumulative.assign(1, 0.0);
-  auto addPiece = [&](const WrapPiece& p, double length) {
-    _pieces.push_back(p);
+  auto addArc = [&](size_t i) {  // on circle i, from where the line arrives to where the next leaves
+    const Circle& c = circles[i];
+    const double in = std::atan2(arrive[i][1] - c.c[1], arrive[i][0] - c.c[0]);
+    const double out = std::atan2(leave[i][1] - c.c[1], leave[i][0] - c.c[0]);
+    double sweep = std::fmod(c.sense * (out - in) + 2.0 * twoPi, twoPi);
+    if (sweep > twoPi * (1.0 - 1e-12)) sweep = 0.0;  // touching: round-off below a full turn
+    sweep += twoPi * c.turns;
+    if (!(sweep > 0.0)) return;
+    WrapPiece arc;
+    arc.arc = true;
+    arc.center = c.c;
+    arc.radius = c.rho;
+    arc.angle0 = in;
+    arc.sense = c.sense;
+    _pieces.push_back(arc);
+    _cumulative.push_back(_cumulative.back() + c.rho * sweep);
+  };
+  auto addLine = [&](const Vec3& from, const Vec3& direction, double length) {
+    WrapPiece line;
+    line.start = from;
+    line.direction = direction;
+    _pieces.push_back(line);
     _cumulative.push_back(_cumulative.back() + length);
   };
-  for (size_t i = 0; i + 1 < circles.size(); ++i) {
-    if (i > 0) {  // the arc on circle i, from where the line arrives to where the next leaves
-      const Circle& c = circles[i];
-      const double in = std::atan2(arrive[i][1] - c.c[1], arrive[i][0] - c.c[0]);
-      const double out = std::atan2(leave[i][1] - c.c[1], leave[i][0] - c.c[0]);
-      double sweep = std::fmod(c.sense * (out - in) + 2.0 * twoPi, twoPi);
-      if (sweep > twoPi * (1.0 - 1e-12)) sweep = 0.0;  // touching: round-off below a full turn
-      sweep += twoPi * _d.wrap[i - 1].turns;
-      if (sweep > 0.0) {
-        WrapPiece arc;
-        arc.arc = true;
-        arc.center = c.c;
-        arc.radius = c.rho;
-        arc.angle0 = in;
-        arc.sense = c.sense;
-        addPiece(arc, c.rho * sweep);
-      }
+  if (!_d.closed) {
+    for (size_t i = 0; i + 1 < m; ++i) {
+      if (i > 0) addArc(i);
+      addLine(leave[i], lineDir[i], lineLength[i]);
     }
-    if (lineLength[i] > 0.0) {
-      WrapPiece line;
-      line.start = leave[i];
-      line.direction = lineDir[i];
-      addPiece(line, lineLength[i]);
+  } else {
+    // a closed path starts (and ends) halfway along the line from the first pulley to the second:
+    // a two-pulley loop is then symmetric about its first node
+    const double half = 0.5 * lineLength[0];
+    const Vec3 middle = add(leave[0], scale(half, lineDir[0]));
+    addLine(middle, lineDir[0], half);
+    for (size_t i = 1; i + 1 < m; ++i) {
+      addArc(i);
+      addLine(leave[i], lineDir[i], lineLength[i]);
     }
+    addArc(0);
+    addLine(leave[0], lineDir[0], half);
   }
   _length = _cumulative.back();
   if (!(_length > 0.0)) fail("the wrap path has zero length");

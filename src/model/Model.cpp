@@ -171,13 +171,15 @@ void Model::addBodies(Build& build) {
     b.elements = bd.elements;
     build.curves.emplace_back(bd.geometry, _dim, scene.loads.gravity);
     b.length = build.curves.back().length();
-    b.elementLength = b.length / b.elements;
+    const bool ale = info.materialBlock() >= 0;  // material coordinates: slopes are dr/dp = lambda0 dr/ds (never scaled by l)
+    // a pretension: the material of the initial curve stretched by lambda0 (ALE kinds: through p)
+    b.elementLength = b.length / b.elements / (ale ? 1.0 : bd.initialStretch);
+    b.closed = bd.geometry.closed;
     b.section = bd.section;
     b.properties = info.properties(bd.section);
-    const bool ale = info.materialBlock() >= 0;  // material coordinates: slopes are dr/dp = lambda0 dr/ds (never scaled by l)
     b.discretization = {b.elementLength,
                         ale ? bd.initialStretch : scene.discretization.slopeScaling ? b.elementLength : 1.0,
-                        scene.discretization.gaussPoints};
+                        scene.discretization.gaussPoints, ale ? 1.0 : bd.initialStretch};
     b.velocityDependent = info.velocityDependent(bd.section, b.discretization);
     b.nodeArc = materialNodeArcs(bd, b.elements, b.length);
     b.blocksPerNode = info.blocksPerNode;
@@ -189,8 +191,9 @@ void Model::addBodies(Build& build) {
     for (int k = 0; k < 3; ++k) b.loadPerLength[k] = b.properties.rhoA * scene.loads.gravity[k];
     for (const PointMassDesc& pm : bd.pointMasses) {
       const double x = std::min(std::max(pm.at, 0.0), b.length);
-      const int e = std::min(static_cast<int>(x / b.elementLength), b.elements - 1);
-      b.pointMasses.push_back({e, x / b.elementLength - e, pm.mass});
+      const double u = x / b.length * b.elements;  // in elements
+      const int e = std::min(static_cast<int>(u), b.elements - 1);
+      b.pointMasses.push_back({e, u - e, pm.mass});
     }
     if (_bodies.empty()) _scales = {b.length, b.properties.rhoA, b.properties.EI, b.properties.EA};
     build.bodyIndex[b.name] = static_cast<int>(_bodies.size());
@@ -206,6 +209,12 @@ void Model::mergeJunctions(Build& build) {
     while (parent[k] != k) k = parent[k] = parent[parent[k]];
     return k;
   };
+  for (const Body& b : _bodies)  // a loop's last node is its first: every block
+    if (b.closed)
+      for (int k = 0; k < b.blocksPerNode; ++k) {
+        const int first = root(b.block(0, k)), last = root(b.block(b.elements, k));
+        parent[std::max(first, last)] = std::min(first, last);
+      }
   for (const JunctionDesc& j : build.scene.junctions) {
     if (j.nodes.size() < 2) throw InputError(j.mark.where() + ": a junction needs at least two nodes");
     const Body& b0 = build.body(_bodies, j.nodes[0].body, j.nodes[0].mark);
@@ -315,9 +324,11 @@ void Model::placeInitialState(Build& build) {
         const int blk = b.block(n, k);
         double* q = &_q0[blk * _dim];
         switch (info.layout[k]) {
-          case elements::BlockRole::AxialGradient:
-            for (int i = 0; i < _dim; ++i) q[i] = b.blockScale(k) * p.t[i];
+          case elements::BlockRole::AxialGradient: {  // dr/dx = lambda0 t (ALE kinds: in their gradientScale)
+            const double stretch = info.materialBlock() >= 0 ? 1.0 : scene.bodies[bi].initialStretch;
+            for (int i = 0; i < _dim; ++i) q[i] = b.blockScale(k) * stretch * p.t[i];
             break;
+          }
           case elements::BlockRole::TransverseGradient:
             if (_dim != 2) throw std::logic_error("Model: a transverse gradient block needs a 3D section frame");
             q[0] = -p.t[1];

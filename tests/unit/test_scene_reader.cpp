@@ -1238,8 +1238,9 @@ TEST(SceneReader, AleBodiesAndTheirMotions) {
   EXPECT_TRUE(failsWith(flowing, 4, "bodies[0]", "material_motion is a motion in time"));
   EXPECT_TRUE(failsWith(edit(modes, "material_motion: {function: linear, rate: -2}", "payout: {function: linear, rate: 1}"),
                         4, "bodies[0]", "payout is a motion in time"));
-  EXPECT_TRUE(failsWith(edit(kBase2d, "    elements: 20\n", "    elements: 20\n    initial_stretch: 1.1\n"), 7,
-                        "bodies[0].initial_stretch", "AncfCable2d has no material coordinates (an ALE kind has: AleCable2d"));
+  // a cable takes a pretension too (issue 34: belts), as its elements' reference length
+  EXPECT_DOUBLE_EQ(parseScene(edit(kBase2d, "    elements: 20\n", "    elements: 20\n    initial_stretch: 1.1\n"), "scene.yaml")
+                       .bodies[0].initialStretch, 1.1);
   const model::SceneDescription sw =
       parseScene(modes + "sweep: {parameter: transport_speed, from: 0, to: 40, points: 5}\n", "scene.yaml");
   EXPECT_EQ(sw.sweep.parameter, model::SweepParameter::TransportSpeed);
@@ -1368,4 +1369,28 @@ TEST(SceneReader, PulleysContactAndWrapPathsAreReadAndChecked) {
                         5, "pulleys[1].name", "a second pulley named 'drum'"));
   EXPECT_TRUE(failsWith(edit(head + wrap + contact, "dimension: 2", "dimension: 3"), 3, "pulleys",
                         "only when dimension is 2"));
+  // a closed belt around two pulleys, pretensioned
+  const std::string two = edit(head, "speed: -1}", "speed: -1}\n  - {name: idler, center: [2, 0], radius: 0.25}");  // line 5
+  const std::string loop =
+      "    initial_stretch: 1.01\n"                                                                                   // 11
+      "    geometry: {kind: wrap, closed: true, around: [{pulley: drum, sense: ccw}, {pulley: idler, sense: ccw}]}\n";  // 12
+  const SceneDescription c = parseScene(two + loop + "contact:\n  - {body: rope, stiffness: 1e7}\n", "scene.yaml");
+  EXPECT_TRUE(c.bodies[0].geometry.closed);
+  EXPECT_DOUBLE_EQ(c.bodies[0].initialStretch, 1.01);
+  // external tangents of circles 0.5 and 0.25 at distance 2: 2 sqrt(4 - 0.0625) + the two arcs
+  const double e = 0.25, D = 2.0, beta = std::asin(e / D), pi = std::acos(-1.0);
+  strand::model::InitialGeometry closedPath(c.bodies[0].geometry, 2, {});
+  EXPECT_NEAR(closedPath.length(), 2.0 * std::sqrt(D * D - e * e) + 0.5 * (pi + 2.0 * beta) + 0.25 * (pi - 2.0 * beta), 1e-12);
+  const auto first = closedPath.at(0.0), last = closedPath.at(closedPath.length());
+  EXPECT_NEAR(first.r[0], last.r[0], 1e-12);
+  EXPECT_NEAR(first.r[1], last.r[1], 1e-12);
+  EXPECT_NEAR(first.t[0], last.t[0], 1e-12);
+  EXPECT_TRUE(failsWith(two + edit(loop, "closed: true,", "closed: true, start: [0, 0],") + "contact:\n  - {body: rope, stiffness: 1e7}\n",
+                        12, "bodies[0].geometry.start", "a closed path has no ends"));
+  EXPECT_TRUE(failsWith(two + edit(loop, ", {pulley: idler, sense: ccw}", "") + "contact:\n  - {body: rope, stiffness: 1e7}\n",
+                        12, "bodies[0].geometry.around", "at least two pulleys"));
+  EXPECT_TRUE(failsWith(edit(edit(two, "element: AncfCable2d", "element: AncfBeam2dShear"), "{E: 1e9, A: 1e-4, I: 1e-12, rho: 1000}",
+                                 "{E: 1e9, rho: 1000, width: 0.01, height: 0.01}") +
+                            loop + "contact:\n  - {body: rope, stiffness: 1e7}\n",
+                        11, "bodies[0].initial_stretch", "not built yet"));
 }

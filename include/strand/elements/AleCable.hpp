@@ -59,6 +59,7 @@ public:
                                                            BlockRole::MaterialCoordinate};
   static constexpr int kOrientationBlock = 1;
   static constexpr bool kStressFreeInitial = false;
+  static constexpr bool kInitialStretch = true;  // initial_stretch (through the material coordinates)
   static constexpr bool kConstantMass = false;  // M(q): the inertia is the element's (inertia, inertiaTangent)
   // the cable's keys: E, A, I, rho and the Kelvin-Voigt coefficients (here on the material's rates)
   static constexpr const auto& kSectionKeys = AncfCable<D>::kSectionKeys;

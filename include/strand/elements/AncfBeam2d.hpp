@@ -85,6 +85,7 @@ public:
   static constexpr const BlockRole* kNodeLayout = Centerline::kNodeLayout;
   static constexpr int kOrientationBlock = Centerline::kOrientationBlock;  // r_y: the cross-section
   static constexpr bool kStressFreeInitial = false;
+  static constexpr bool kInitialStretch = false;  // initial_stretch: not built
   static constexpr bool kConstantMass = true;
   static constexpr bool kConfigurationLoads = false;
   static constexpr SectionKey kSectionKeys[] = {

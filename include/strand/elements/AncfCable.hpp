@@ -61,6 +61,7 @@ public:
     double length = 0.0;                 // reference length l of the element [m]
     double slopeScale[2] = {1.0, 1.0};   // sigma of node 1 and 2
     const double* kappa0 = nullptr;      // reference curvature at each Gauss point, 2D (null: 0)
+    double eps0 = 0.0;                   // the initial state's axial strain (lambda0^2 - 1) / 2: a pretension
     // pointTable() precomputed at the points of one table (uniform elements); used only with that table
     const CablePointTable* points = nullptr;
     const CableShapeTable* pointsOf = nullptr;
@@ -227,6 +228,7 @@ public:
   static constexpr BlockRole kNodeLayout[kBlocksPerNode] = {BlockRole::Position, BlockRole::AxialGradient};
   static constexpr int kOrientationBlock = 1;          // a clamp holds the slope; a moment turns it
   static constexpr bool kStressFreeInitial = D == 2;   // stress_free: initial (reference curvature)
+  static constexpr bool kInitialStretch = true;        // initial_stretch: a pretensioned initial state (eps0)
   static constexpr bool kConstantMass = true;
   static constexpr bool kConfigurationLoads = false;  // distributed loads: the constant consistentLoad
   static constexpr SectionKey kSectionKeys[] = {
@@ -260,6 +262,7 @@ public:
     b.tab = CableShapeTable(d.gaussPoints);
     b.geo.length = d.elementLength;
     b.geo.slopeScale[0] = b.geo.slopeScale[1] = d.gradientScale;
+    b.geo.eps0 = 0.5 * (d.initialStretch * d.initialStretch - 1.0);
     b.points = pointTable(b.geo, b.tab);
     return b;
   }
@@ -334,13 +337,15 @@ private:
   // instruction (-O3; docs/performance.md). The 3D tangent, too large for that, is written in array
   // form (pointTangents3d).
 
-  // G = G0 + Gu and the axial strain eps = r0'.u' + u'.u'/2 at every point (no cancellation).
+  // G = G0 + Gu and the axial strain eps = eps0 + r0'.u' + u'.u'/2 at every point (no
+  // cancellation; eps0 = (|r0'|^2 - 1) / 2 of a pretensioned initial state, else 0).
   template <int P, class S>
-  static void pointKinematics(const CablePointTable& t, const double* q0, const S* u, S G[kG][P], S eps[P]) {
+  static void pointKinematics(const CablePointTable& t, const double* q0, const S* u, S G[kG][P], S eps[P],
+                              double eps0 = 0.0) {
     double G0[kG][P];
     Calc::template gather<P>(t, q0, G0);
     Calc::template gather<P>(t, u, G);
-    for (int g = 0; g < P; ++g) eps[g] = S(0.0);
+    for (int g = 0; g < P; ++g) eps[g] = S(eps0);
     for (int i = 0; i < D; ++i)
       for (int g = 0; g < P; ++g) eps[g] += G0[i][g] * G[i][g] + 0.5 * G[i][g] * G[i][g];
     for (int k = 0; k < kG; ++k)
@@ -374,7 +379,7 @@ private:
                       const S* u, const S* v, S* f) {
     S G[kG][P], eps[P], fG[kG][P];
     double k0[P];
-    pointKinematics<P>(t, q0, u, G, eps);
+    pointKinematics<P>(t, q0, u, G, eps, geo.eps0);
     referenceCurvature<P>(geo, t, k0);
     if (v) {
       S Gd[kG][P];
@@ -392,7 +397,7 @@ private:
                           const S* u) {
     S G[kG][P], eps[P], w[P];
     double k0[P];
-    pointKinematics<P>(t, q0, u, G, eps);
+    pointKinematics<P>(t, q0, u, G, eps, geo.eps0);
     referenceCurvature<P>(geo, t, k0);
     for (int g = 0; g < P; ++g) {
       S Gg[kG];
@@ -548,7 +553,7 @@ private:
   [[gnu::noinline]] static void tangentAt(const CableSection& sec, const Geometry& geo, const CablePointTable& t, const double* q0,
                         const double* u, const double* v, double* f, double* K, double* Dm) {
     double G[kG][P], Gd[kG][P], eps[P], k0[P], fG[kG][P], KG[kG][kG][P], DG[kG][kG][P];
-    pointKinematics<P>(t, q0, u, G, eps);
+    pointKinematics<P>(t, q0, u, G, eps, geo.eps0);
     referenceCurvature<P>(geo, t, k0);
     if (v) {
       Calc::template gather<P>(t, v, Gd);

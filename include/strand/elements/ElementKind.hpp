@@ -86,6 +86,8 @@ struct BodyDiscretization {
   double elementLength = 0.0;  // reference length of each element [m]
   double gradientScale = 1.0;  // AxialGradient coordinates are gradientScale * dr/dx (the cable's slope scaling)
   int gaussPoints = 5;         // discretization.gauss_points (the cable's elastic rule)
+  double initialStretch = 1.0; // kinds without material coordinates: the initial shape is the material
+                               // stretched by this (their strain starts at (lambda0^2 - 1) / 2)
 };
 
 }  // namespace strand::elements

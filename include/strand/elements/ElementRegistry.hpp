@@ -15,6 +15,7 @@ struct KindInfo {
   const BlockRole* layout = nullptr;  // blocksPerNode roles; block 0 is the position
   int orientationBlock = 0;           // the node block a clamp holds (with the position) and a moment turns
   bool stressFreeInitial = false;     // accepts stress_free: initial
+  bool initialStretch = false;        // accepts initial_stretch (a pretensioned initial state)
   bool constantMass = true;           // M does not depend on the coordinates (every integrator assumes it today)
   const SectionKey* sectionKeys = nullptr;
   int sectionKeyCount = 0;

@@ -29,11 +29,14 @@ struct Body {
   std::string name;
   int kind = 0;  // elements::kindInfo(kind)
   int elements = 0;
-  double length = 0.0, elementLength = 0.0;
+  double length = 0.0, elementLength = 0.0;  // the initial curve's length; an element's reference length
+                                             // (length / elements, divided by the initial stretch
+                                             // for kinds without material coordinates)
   elements::SectionValues section;             // the kind's section keys and options
   elements::BeamProperties properties;         // EA, EI, rho A of the section
   elements::BodyDiscretization discretization; // element length, slope scale, Gauss points
   bool velocityDependent = false;              // its internal force depends on velocities (damping)
+  bool closed = false;                         // a loop: its last node is its first (the same blocks)
   int blocksPerNode = 0;
   std::vector<int> nodeBlocks;          // per node, blocksPerNode blocks in the kind's layout (model numbering)
   std::vector<int> posBlock;            // per node: its position block

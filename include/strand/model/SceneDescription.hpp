@@ -49,8 +49,11 @@ struct GeometryDesc {
   Vec3 normal{0.0, 0.0, 1.0};
   // polyline: corner points (from `points`, or from a CSV `file` of x,y[,z] rows)
   std::vector<Vec3> points;
-  // wrap (2D): from `start`, along tangent lines and arcs around each circle in turn, to `end`
+  // wrap (2D): from `start`, along tangent lines and arcs around each circle in turn, to `end`;
+  // closed: around the circles and back to the first (no start, end): a belt loop, whose body's
+  // last node is its first
   std::vector<WrapTurn> wrap;
+  bool closed = false;
 };
 
 struct PointMassDesc {
@@ -92,8 +95,10 @@ struct BodyDesc {
   // spaced between them (seed 000 Eq. 51), so the body's unstretched length grows by the payout
   bool hasPayout = false;
   TimeFunction payout;
-  // ALE bodies: the initial shape is the material stretched by this factor (lambda0 > 0): material
-  // coordinates p = s / lambda0 at arc length s, slopes dr/dp = lambda0 t (a pretension)
+  // The initial shape is the material stretched by this factor (lambda0 > 0; a pretension, e.g. a
+  // belt's reference strain eps_ref: lambda0 = 1 / (1 + eps_ref)). ALE bodies: material
+  // coordinates p = s / lambda0 at arc length s, slopes dr/dp = lambda0 t; the other kinds:
+  // elements of reference length L / (N lambda0), slopes dr/dx = lambda0 t
   double initialStretch = 1.0;
   // ALE bodies: nodes whose material coordinate is set one by one (a load point riding on the
   // material, a feeder at an inner node); the nodes between two listed ones stay equally spaced in
