@@ -157,6 +157,11 @@ TEST(Capstan, PinnedEndHoldsT2TimesExpOfMuTheta) {
         // the path turns clockwise: a counterclockwise drum drags the rope back towards the pin
         const double exact = kT2 * std::exp(-(omega > 0 ? 1.0 : -1.0) * mu * theta);
         const double T1 = tensionAt(p, s.q, 0);
+        int rank;
+        MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+        if (rank == 0)
+          std::printf("capstan theta %.4f mu %.1f omega %+.0f: T1 = %.4f N, T2 exp(-+mu theta) = %.4f N, error %.2e\n", theta,
+                      mu, omega, T1, exact, T1 / exact - 1.0);
         EXPECT_NEAR(T1 / exact, 1.0, 0.01) << "theta " << theta << " mu " << mu << " omega " << omega;
         EXPECT_NEAR(tensionAt(p, s.q, p.model().bodies()[0].elements), kT2, 1e-3 * kT2);
       }
