@@ -201,7 +201,8 @@ private:
   }
 
   // /series/pulley_<name>_{fx, fy, torque, speed}: what the belts exert on each pulley (force, torque
-  // about its centre, counterclockwise) and its speed; statics: the belt at rest, speeds at t = 0.
+  // about its centre, counterclockwise) and its speed (a free pulley's from V); statics: the belt at
+  // rest, speeds at t = 0.
   PetscErrorCode writePulleySeries(Vec X, Vec V, double t) {
     PetscFunctionBeginUser;
     const std::vector<model::PulleyDesc>& pulleys = _problem.model().pulleys();
@@ -210,10 +211,10 @@ private:
     PetscCall(_problem.assembler().pulleyLoads(X, V, t, load));
     for (size_t p = 0; p < pulleys.size(); ++p) {
       const std::string stem = "pulley_" + pulleys[p].name + "_";
-      PetscCallCXX(_writer->writeScalarSeries(stem + "fx", load[3 * p]));
-      PetscCallCXX(_writer->writeScalarSeries(stem + "fy", load[3 * p + 1]));
-      PetscCallCXX(_writer->writeScalarSeries(stem + "torque", load[3 * p + 2]));
-      PetscCallCXX(_writer->writeScalarSeries(stem + "speed", pulleys[p].speed.at(t).f));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "fx", load[4 * p]));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "fy", load[4 * p + 1]));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "torque", load[4 * p + 2]));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "speed", load[4 * p + 3]));
     }
     PetscFunctionReturn(0);
   }

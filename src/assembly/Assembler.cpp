@@ -297,6 +297,7 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal t, PetscReal 
   _moments->residual(x.a, loadFactor, r.a);
   PetscCallCXX(_multibody->residual(x.a, _constraintScale, loadFactor, r.a));
   _contacts->residual(x.a, V ? v.a : nullptr, t, r.a);
+  _contacts->pulleyResidual(V ? v.a : nullptr, r.a);  // free pulleys' rotational damping
   PetscCall(endLocalSum(&r));
   // owned rows: nodal forces and supports
   PetscScalar* owned;
@@ -352,6 +353,7 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal s
   PetscCall(_moments->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, _constraintScale, shiftA, loadFactor, J, _fixedLocal));
   PetscCall(_contacts->jacobian(x.a, V ? v.a : nullptr, t, shiftV, J, D, _fixedLocal));
+  PetscCall(_contacts->pulleyMatrices(shiftV, shiftA, J, D));
   if (A && V && hasVariableMass()) {
     LocalRead a;
     PetscCall(beginLocal(A, _rWork, &a));
@@ -390,6 +392,7 @@ PetscErrorCode Assembler::massMatrix(Mat M, bool maskSupports) {
   PetscCall(MatZeroEntries(M));
   for (const auto& f : _families) PetscCall(f->mass(M, maskSupports ? _fixedLocal : _noneFixed));
   PetscCall(_multibody->mass(M, maskSupports ? _fixedLocal : _noneFixed));
+  PetscCall(_contacts->mass(M));
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(evMass, 0, 0, 0, 0));
@@ -441,6 +444,7 @@ PetscErrorCode Assembler::massMatrixAt(Vec X, Mat M, bool maskSupports) {
   const std::vector<char>& fixed = maskSupports ? _fixedLocal : _noneFixed;
   for (const auto& f : _families) PetscCall(f->mass(M, fixed));
   PetscCall(_multibody->mass(M, fixed));
+  PetscCall(_contacts->mass(M));
   if (hasVariableMass()) {
     LocalRead x;
     PetscCall(beginLocal(X, _xWork, &x));
@@ -604,12 +608,14 @@ PetscErrorCode Assembler::pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<dou
   LocalRead x, v;
   PetscCall(beginLocal(X, _xWork, &x));
   if (V) PetscCall(beginLocal(V, _vWork, &v));
-  std::vector<double> mine(3 * _model.pulleys().size(), 0.0);
+  std::vector<double> mine(4 * _model.pulleys().size(), 0.0);
   _contacts->pulleyLoads(x.a, V ? v.a : nullptr, t, mine.data());
   PetscCall(endLocal(&x));
   if (V) PetscCall(endLocal(&v));
   load.assign(mine.size(), 0.0);
   PetscCallMPI(MPI_Allreduce(mine.data(), load.data(), static_cast<int>(mine.size()), MPI_DOUBLE, MPI_SUM, _dofs.comm()));
+  for (size_t p = 0; p < _model.pulleys().size(); ++p)
+    if (!_model.pulleys()[p].free()) load[4 * p + 3] = _model.pulleys()[p].speed.at(t).f;
   PetscFunctionReturn(0);
 }
 

@@ -44,12 +44,13 @@ Multibody::JointState Multibody::state(int k, const double* x) const {
 }
 
 bool Multibody::isJoint(int k) const { return _model.couplings()[_dofs.localCouplings()[k]].joint >= 0; }
+bool Multibody::isRigidBody(int k) const { return _model.couplings()[_dofs.localCouplings()[k]].rigidBody >= 0; }
 
 void Multibody::residual(const double* x, double scale, double loadFactor, double* r) const {
   const int D = _model.dim();
   for (int k = 0; k < static_cast<int>(_dofs.localCouplings().size()); ++k) {
-    if (!isJoint(k)) {  // a rigid body: only a 3D torque adds to the residual here
-      if (D == 2 || loadFactor == 0.0) continue;
+    if (!isJoint(k)) {  // a rigid body: only a 3D torque adds to the residual here (contact: PulleyContacts)
+      if (D == 2 || loadFactor == 0.0 || !isRigidBody(k)) continue;
       const double* t = _model.rigidBodies()[_model.couplings()[_dofs.localCouplings()[k]].rigidBody].torque.data();
       const PetscInt* lb = &_dofs.couplingLocalBlocks()[_dofs.couplingOffset()[k]];
       for (int a = 1; a < 4; ++a) {  // r -= loadFactor 1/2 tau x a_k
@@ -78,6 +79,7 @@ PetscErrorCode Multibody::jacobian(const double* x, double scale, double shiftA,
   double Ke[(kMaxBlocks * 3) * (kMaxBlocks * 3)];
   for (int k = 0; k < static_cast<int>(local.size()); ++k) {
     const model::Coupling& c = _model.couplings()[local[k]];
+    if (c.rigidBody < 0 && c.joint < 0) continue;  // a belt element's contact with a pulley: PulleyContacts
     const PetscInt off = _dofs.couplingOffset()[k];
     const PetscInt* lb = &_dofs.couplingLocalBlocks()[off];
     const int nb = static_cast<int>(c.blocks.size()), N = nb * D;

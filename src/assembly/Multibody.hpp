@@ -61,6 +61,7 @@ private:
   };
   JointState state(int localCoupling, const double* x) const;
   bool isJoint(int localCoupling) const;
+  bool isRigidBody(int localCoupling) const;
   // Adds a joint's element matrix (N x N over its blocks, multipliers first) with fixed rows and
   // columns zeroed.
   PetscErrorCode addJointMatrix(int localCoupling, double* Ke, Mat J, const std::vector<char>& fixed) const;

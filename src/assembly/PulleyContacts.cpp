@@ -7,6 +7,48 @@
 
 namespace strand::assembly {
 
+namespace {
+
+// tau = (d x (-f))_z at a point (d = r - c) and its derivatives in r, v (2 each) and omega.
+struct PointTorque {
+  double tau, dr[2], dv[2], domega;
+};
+PointTorque pointTorque(const double* d, const double* f, const double* dfdr, const double* dfdv, const double* dfdw) {
+  PointTorque t;
+  t.tau = -(d[0] * f[1] - d[1] * f[0]);
+  t.dr[0] = -(f[1] + d[0] * dfdr[2] - d[1] * dfdr[0]);
+  t.dr[1] = -(-f[0] + d[0] * dfdr[3] - d[1] * dfdr[1]);
+  for (int j = 0; j < 2; ++j) t.dv[j] = -(d[0] * dfdv[2 + j] - d[1] * dfdv[j]);
+  t.domega = -(d[0] * dfdw[1] - d[1] * dfdw[0]);
+  return t;
+}
+
+// J (and D) += an element's coupling to a free pulley's block pg: belt rows x phi column (col,
+// n x 2, column 1 zero), phi row x belt columns (row, the first n of a 2 x n block; the held second
+// coordinate's row stays zero) and phi x phi (self).
+PetscErrorCode insertCoupling(Mat J, Mat D, int stride, const PetscInt* gb, PetscInt pg, const std::vector<double>& colJ,
+                              const std::vector<double>& colD, const std::vector<double>& rowJ,
+                              const std::vector<double>& rowD, double selfJ, double selfD) {
+  PetscFunctionBeginUser;
+  const size_t n = static_cast<size_t>(stride) * 2;
+  std::vector<double> row2(2 * n, 0.0);
+  std::copy(rowJ.begin(), rowJ.begin() + n, row2.begin());
+  const double self2[4] = {selfJ, 0.0, 0.0, 0.0};
+  PetscCall(MatSetValuesBlocked(J, stride, gb, 1, &pg, colJ.data(), ADD_VALUES));
+  PetscCall(MatSetValuesBlocked(J, 1, &pg, stride, gb, row2.data(), ADD_VALUES));
+  PetscCall(MatSetValuesBlocked(J, 1, &pg, 1, &pg, self2, ADD_VALUES));
+  if (D) {
+    std::copy(rowD.begin(), rowD.begin() + n, row2.begin());
+    const double selfD2[4] = {selfD, 0.0, 0.0, 0.0};
+    PetscCall(MatSetValuesBlocked(D, stride, gb, 1, &pg, colD.data(), ADD_VALUES));
+    PetscCall(MatSetValuesBlocked(D, 1, &pg, stride, gb, row2.data(), ADD_VALUES));
+    PetscCall(MatSetValuesBlocked(D, 1, &pg, 1, &pg, selfD2, ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
 PulleyContacts::PulleyContacts(const model::Model& model, const model::DofMap& dofs,
                                const std::vector<double>& q0Local)
     : _model(model), _q0(q0Local) {
@@ -38,16 +80,25 @@ PulleyContacts::PulleyContacts(const model::Model& model, const model::DofMap& d
       if (!b.elements.empty()) _bodies.push_back(std::move(b));
     }
   }
+  for (int p = 0; p < static_cast<int>(model.pulleys().size()); ++p) {
+    const int blk = model.pulleyBlock(p);
+    const PetscInt g = blk < 0 ? -1 : dofs.globalBlock()[blk];
+    _pulleyGlobal.push_back(g);
+    _pulleyLocal.push_back(g < 0 ? -1 : dofs.localBlock(g));
+    if (g >= dofs.ownedBegin() && g < dofs.ownedEnd()) _ownedFree.push_back(p);
+  }
 }
 
-std::vector<contact::PulleyState> PulleyContacts::pulleysAt(double t) const {
+std::vector<contact::PulleyState> PulleyContacts::pulleysAt(double t, const double* v) const {
   std::vector<contact::PulleyState> out;
-  for (const model::PulleyDesc& p : _model.pulleys()) {
+  for (size_t p = 0; p < _model.pulleys().size(); ++p) {
+    const model::PulleyDesc& d = _model.pulleys()[p];
     contact::PulleyState s;
-    s.c[0] = p.center[0];
-    s.c[1] = p.center[1];
-    s.omega = p.speed.at(t).f;
-    s.radius = p.radius;
+    s.c[0] = d.center[0];
+    s.c[1] = d.center[1];
+    s.radius = d.radius;
+    if (!d.free()) s.omega = d.speed.at(t).f;
+    else if (v && _pulleyLocal[p] >= 0) s.omega = v[_pulleyLocal[p] * 2];
     out.push_back(s);
   }
   return out;
@@ -70,7 +121,7 @@ void PulleyContacts::pointState(const LocalBody& b, int k, int g, const double* 
 
 void PulleyContacts::residual(const double* x, const double* v, double t, double* r, double scale) const {
   if (_bodies.empty()) return;
-  const std::vector<contact::PulleyState> pulleys = pulleysAt(t);
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
   for (const LocalBody& b : _bodies) {
     const model::PulleyContactSet& set = _model.contacts()[b.set];
     const int points = static_cast<int>(b.weight.size());
@@ -85,6 +136,10 @@ void PulleyContacts::residual(const double* x, const double* v, double t, double
           const double* w = &b.w[static_cast<size_t>(g) * b.stride];
           for (int a = 0; a < b.stride; ++a)
             for (int i = 0; i < 2; ++i) r[lb[a] * 2 + i] -= scale * b.weight[g] * w[a] * f[i];
+          if (_pulleyLocal[p] >= 0) {  // the belt's torque on a free pulley
+            const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
+            r[_pulleyLocal[p] * 2] -= scale * b.weight[g] * -(d[0] * f[1] - d[1] * f[0]);
+          }
         }
       }
     }
@@ -95,30 +150,47 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
                                         const std::vector<char>& fixed) const {
   PetscFunctionBeginUser;
   if (_bodies.empty()) PetscFunctionReturn(0);
-  const std::vector<contact::PulleyState> pulleys = pulleysAt(t);
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+  const int nPulleys = static_cast<int>(pulleys.size());
   std::vector<double> Kj, Kd;
+  // per free pulley touched by the element: belt rows x phi column (n x 2), phi row x belt columns
+  // (2 x n), phi x phi (2 x 2); J and D parts
+  std::vector<std::vector<double>> colJ(nPulleys), colD(nPulleys), rowJ(nPulleys), rowD(nPulleys);
+  std::vector<double> selfJ(nPulleys), selfD(nPulleys);
+  std::vector<char> touched(nPulleys);
   for (const LocalBody& b : _bodies) {
     const model::PulleyContactSet& set = _model.contacts()[b.set];
     const int points = static_cast<int>(b.weight.size()), n = b.stride * 2;
     Kj.assign(static_cast<size_t>(n) * n, 0.0);
     Kd.assign(static_cast<size_t>(n) * n, 0.0);
+    for (int p : set.pulleys)
+      if (_pulleyLocal[p] >= 0)
+        for (auto* m : {&colJ[p], &colD[p], &rowJ[p], &rowD[p]}) m->assign(static_cast<size_t>(n) * 2, 0.0);
     for (int k = 0; k < static_cast<int>(b.elements.size()); ++k) {
-      bool touching = false;
+      bool any = false;
+      std::fill(touched.begin(), touched.end(), 0);
       for (int g = 0; g < points; ++g) {
         double rg[2], vg[2];
         pointState(b, k, g, x, v, rg, vg);
         for (int p : set.pulleys) {
           double f[2], dr[4], dv[4], dw[2];
           if (!contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw).closed) continue;
-          if (!touching) {
+          if (!any) {
             std::fill(Kj.begin(), Kj.end(), 0.0);
             std::fill(Kd.begin(), Kd.end(), 0.0);
-            touching = true;
+            any = true;
+          }
+          const bool free = _pulleyLocal[p] >= 0;
+          if (free && !touched[p]) {
+            for (auto* m : {&colJ[p], &colD[p], &rowJ[p], &rowD[p]}) std::fill(m->begin(), m->end(), 0.0);
+            selfJ[p] = selfD[p] = 0.0;
+            touched[p] = 1;
           }
           const double* w = &b.w[static_cast<size_t>(g) * b.stride];
+          const double W = b.weight[g];
           for (int a = 0; a < b.stride; ++a)
             for (int c = 0; c < b.stride; ++c) {
-              const double s = b.weight[g] * w[a] * w[c];
+              const double s = W * w[a] * w[c];
               if (s == 0.0) continue;
               for (int i = 0; i < 2; ++i)
                 for (int j = 0; j < 2; ++j) {
@@ -127,24 +199,83 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
                   Kd[at] -= s * dv[i * 2 + j];
                 }
             }
+          if (!free) continue;
+          const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
+          const PointTorque tq = pointTorque(d, f, dr, dv, dw);
+          for (int a = 0; a < b.stride; ++a)
+            for (int i = 0; i < 2; ++i) {
+              // belt row (a, i), phi column: -dQ/domega (a velocity)
+              colJ[p][static_cast<size_t>(a * 2 + i) * 2] -= W * w[a] * shiftV * dw[i];
+              colD[p][static_cast<size_t>(a * 2 + i) * 2] -= W * w[a] * dw[i];
+              // phi row, belt column (a, i): -dtau/dq - shiftV dtau/dv
+              rowJ[p][a * 2 + i] -= W * w[a] * (tq.dr[i] + shiftV * tq.dv[i]);
+              rowD[p][a * 2 + i] -= W * w[a] * tq.dv[i];
+            }
+          selfJ[p] -= W * shiftV * tq.domega;
+          selfD[p] -= W * tq.domega;
         }
       }
-      if (!touching) continue;
+      const PetscInt* gb = b.group->globalBlocksOf(b.elements[k]);
+      // every element's couplings to the free pulleys are inserted, zeros where it does not touch:
+      // assembly squeezes out unused slots, and a later contact would find no room
+      for (int p : set.pulleys)
+        if (_pulleyLocal[p] >= 0 && !touched[p]) {
+          for (auto* m : {&colJ[p], &colD[p], &rowJ[p], &rowD[p]}) std::fill(m->begin(), m->end(), 0.0);
+          selfJ[p] = selfD[p] = 0.0;
+          touched[p] = 1;
+        }
+      if (!any) {
+        for (int p : set.pulleys)
+          if (_pulleyLocal[p] >= 0) PetscCall(insertCoupling(J, D, b.stride, gb, _pulleyGlobal[p], colJ[p], colD[p],
+                                                                 rowJ[p], rowD[p], 0.0, 0.0));
+        continue;
+      }
       const PetscInt* lb = b.group->localBlocksOf(b.elements[k]);
+      auto isFixed = [&](int a) { return fixed[lb[a / 2] * 2 + a % 2] != 0; };
       for (int a = 0; a < n; ++a)
         for (int c = 0; c < n; ++c)
-          if (fixed[lb[a / 2] * 2 + a % 2] || fixed[lb[c / 2] * 2 + c % 2])
-            Kj[static_cast<size_t>(a) * n + c] = Kd[static_cast<size_t>(a) * n + c] = 0.0;
-      const PetscInt* gb = b.group->globalBlocksOf(b.elements[k]);
+          if (isFixed(a) || isFixed(c)) Kj[static_cast<size_t>(a) * n + c] = Kd[static_cast<size_t>(a) * n + c] = 0.0;
       PetscCall(MatSetValuesBlocked(J, b.stride, gb, b.stride, gb, Kj.data(), ADD_VALUES));
       if (D) PetscCall(MatSetValuesBlocked(D, b.stride, gb, b.stride, gb, Kd.data(), ADD_VALUES));
+      for (int p = 0; p < nPulleys; ++p) {
+        if (!touched[p]) continue;
+        for (int a = 0; a < n; ++a)
+          if (isFixed(a)) colJ[p][a * 2] = colD[p][a * 2] = rowJ[p][a] = rowD[p][a] = 0.0;
+        PetscCall(insertCoupling(J, D, b.stride, gb, _pulleyGlobal[p], colJ[p], colD[p], rowJ[p], rowD[p], selfJ[p],
+                                 selfD[p]));
+      }
     }
   }
   PetscFunctionReturn(0);
 }
 
+void PulleyContacts::pulleyResidual(const double* v, double* r) const {
+  if (!v) return;
+  for (int p : _ownedFree) r[_pulleyLocal[p] * 2] += _model.pulleys()[p].damping * v[_pulleyLocal[p] * 2];
+}
+
+PetscErrorCode PulleyContacts::pulleyMatrices(double shiftV, double shiftA, Mat J, Mat D) const {
+  PetscFunctionBeginUser;
+  for (int p : _ownedFree) {
+    const model::PulleyDesc& d = _model.pulleys()[p];
+    const PetscInt g = _pulleyGlobal[p] * 2;
+    if (J) PetscCall(MatSetValue(J, g, g, shiftV * d.damping + shiftA * d.inertia, ADD_VALUES));
+    if (D) PetscCall(MatSetValue(D, g, g, d.damping, ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PulleyContacts::mass(Mat M) const {
+  PetscFunctionBeginUser;
+  for (int p : _ownedFree) {
+    const PetscInt g = _pulleyGlobal[p] * 2;
+    PetscCall(MatSetValue(M, g, g, _model.pulleys()[p].inertia, ADD_VALUES));
+  }
+  PetscFunctionReturn(0);
+}
+
 void PulleyContacts::pulleyLoads(const double* x, const double* v, double t, double* load) const {
-  const std::vector<contact::PulleyState> pulleys = pulleysAt(t);
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
   for (const LocalBody& b : _bodies) {
     const model::PulleyContactSet& set = _model.contacts()[b.set];
     for (int k = 0; k < static_cast<int>(b.elements.size()); ++k)
@@ -155,17 +286,18 @@ void PulleyContacts::pulleyLoads(const double* x, const double* v, double t, dou
           double f[2];
           if (!contact::pointForce(set.law, pulleys[p], rg, vg, f)) continue;
           const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
-          load[3 * p] -= b.weight[g] * f[0];
-          load[3 * p + 1] -= b.weight[g] * f[1];
-          load[3 * p + 2] -= b.weight[g] * (d[0] * f[1] - d[1] * f[0]);
+          load[4 * p] -= b.weight[g] * f[0];
+          load[4 * p + 1] -= b.weight[g] * f[1];
+          load[4 * p + 2] -= b.weight[g] * (d[0] * f[1] - d[1] * f[0]);
         }
       }
   }
+  for (int p : _ownedFree) load[4 * p + 3] += pulleys[p].omega;
 }
 
 std::vector<PulleyContacts::PointState> PulleyContacts::points(const double* x, const double* v, double t) const {
   std::vector<PointState> out;
-  const std::vector<contact::PulleyState> pulleys = pulleysAt(t);
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
   for (const LocalBody& b : _bodies) {
     const model::PulleyContactSet& set = _model.contacts()[b.set];
     for (int k = 0; k < static_cast<int>(b.elements.size()); ++k)

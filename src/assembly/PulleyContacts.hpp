@@ -5,9 +5,14 @@
 // pulley with `points` Gauss points on the element:
 //   Q_a = L_e sum_g W_g w_a(eta_g) f(r_g, v_g),   r_g = sum_b w_b(eta_g) q_b,   v_g = sum_b w_b(eta_g) v_b
 // (w_a: the kind's centerline interpolation, its weight on block a). Q is an applied force: the
-// residual takes -Q, the Newton matrix -dQ/dq - shiftV dQ/dv, the damping matrix -dQ/dv. Pulleys
-// turn at a prescribed speed and have no DOFs, so each element's contact stays within its own
-// blocks: the element pattern holds it, and nothing is reserved per pulley.
+// residual takes -Q, the Newton matrix -dQ/dq - shiftV dQ/dv, the damping matrix -dQ/dv.
+//
+// A driven pulley turns at its prescribed speed and has no DOFs: the element's contact stays within
+// its own blocks. A free pulley's angle phi is an unknown (Model::pulleyBlock): it takes the belts'
+// torque tau = sum_g W_g L_e (d x (-f))_z on its phi row, the contact force depends on its speed
+// omega = dphi/dt (df/domega, into the damping matrix), and the Newton matrix couples each element
+// to it (Model::Coupling with a pulley: the pattern is reserved). Its own terms, the inertia J and
+// the rotational damping c omega, are added once by the rank that owns its block (addPulleyTerms).
 #pragma once
 #include <petscmat.h>
 
@@ -22,17 +27,24 @@ namespace strand::assembly {
 class PulleyContacts {
 public:
   PulleyContacts(const model::Model& model, const model::DofMap& dofs, const std::vector<double>& q0Local);
-  bool empty() const { return _bodies.empty(); }
+  bool empty() const { return _bodies.empty() && _ownedFree.empty(); }
 
-  // r -= scale Q (ghosted-local arrays; x displacements, v velocities or null: the belt at rest).
+  // r -= scale Q on the belts' rows and the free pulleys' phi rows (ghosted-local arrays; x
+  // displacements, v velocities or null: the belt at rest, free pulleys still).
   void residual(const double* x, const double* v, double t, double* r, double scale = 1.0) const;
   // J += -dQ/dq - shiftV dQ/dv, and D += -dQ/dv when D is given (rows and columns of fixed DOFs
   // left out).
   PetscErrorCode jacobian(const double* x, const double* v, double t, double shiftV, Mat J, Mat D,
                           const std::vector<char>& fixed) const;
+  // The free pulleys' own terms, on the owned ones: r += c omega (the rotational damping; v null:
+  // none); J += shiftV c + shiftA J_p, D += c (each matrix may be null).
+  void pulleyResidual(const double* v, double* r) const;
+  PetscErrorCode pulleyMatrices(double shiftV, double shiftA, Mat J, Mat D) const;
+  // M += J_p on the free pulleys' phi.
+  PetscErrorCode mass(Mat M) const;
 
-  // load[3 p .. 3 p + 2] += what this rank's contact points exert on pulley p: force x, y and the
-  // torque about its centre (counterclockwise positive), sum_g weight_g (-f, (d x -f)_z).
+  // load[4 p .. 4 p + 3] += what this rank's contact points exert on pulley p: force x, y, the
+  // torque about its centre (counterclockwise), and (owned free pulleys) its speed.
   void pulleyLoads(const double* x, const double* v, double t, double* load) const;
 
   // What a contact point found, for output: per local body, element and pulley, the point states.
@@ -55,11 +67,15 @@ private:
   };
   // r and v at Gauss point g of local element k (q0 + x; v null: zero).
   void pointState(const LocalBody& b, int k, int g, const double* x, const double* v, double* r, double* vel) const;
-  std::vector<contact::PulleyState> pulleysAt(double t) const;
+  // The pulleys at time t; free ones with omega from v (null: 0).
+  std::vector<contact::PulleyState> pulleysAt(double t, const double* v) const;
 
   const model::Model& _model;
   const std::vector<double>& _q0;
   std::vector<LocalBody> _bodies;
+  std::vector<PetscInt> _pulleyLocal;   // per pulley: ghosted-local block of a free pulley, or -1
+  std::vector<PetscInt> _pulleyGlobal;  // per pulley: global block of a free pulley, or -1
+  std::vector<int> _ownedFree;          // free pulleys whose block this rank owns
 };
 
 }  // namespace strand::assembly

@@ -1438,7 +1438,7 @@ private:
     if (ctx_.dim != 2) f.fail("pulleys are circles in the xy plane: only when dimension is 2 (3D belt drives are not built)");
     if (scene_.analysis == model::Analysis::Modes) f.fail("contact is not linearized for modes: use static or dynamic");
     for (const Field& item : f.items()) {
-      item.expectMap({"name", "center", "radius", "speed"});
+      item.expectMap({"name", "center", "radius", "speed", "inertia", "damping", "torque"});
       model::PulleyDesc p;
       p.mark = item.mark();
       const Field name = item.child("name");
@@ -1449,6 +1449,18 @@ private:
       p.center = readVector(item.child("center"), ctx_.dim);
       p.radius = requirePositive(item.child("radius"));
       if (const Field speed = item.child("speed"); speed.present()) p.speed = readTimeFunction(speed);
+      if (const Field inertia = item.child("inertia"); inertia.present()) {
+        if (scene_.analysis != model::Analysis::Dynamic)
+          inertia.fail("a pulley free to turn moves in time: only with analysis: dynamic (statics: give its speed)");
+        p.inertia = requirePositive(inertia);
+        if (const Field speed = item.child("speed"); speed.present() && (speed.isMap() || speed.isList()))
+          speed.fail("a free pulley's speed is its initial speed: a number [rad/s]");
+      }
+      for (const char* key : {"damping", "torque"})
+        if (const Field k = item.child(key); k.present() && !p.free())
+          k.fail("only for a pulley free to turn (with 'inertia'); a driven pulley's motion is its 'speed'");
+      if (const Field d = item.child("damping"); d.present()) p.damping = requireNonNegative(d);
+      if (const Field t = item.child("torque"); t.present()) p.torque = readTimeFunction(t);
       scene_.pulleys.push_back(std::move(p));
     }
   }

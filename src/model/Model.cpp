@@ -128,6 +128,22 @@ Model::Model(const SceneDescription& scene) : _dim(scene.dimension), _gravity(sc
 
 void Model::addContacts(const SceneDescription& scene) {
   _pulleys = scene.pulleys;
+  // a free pulley's block (phi, unused): phi starts at 0 with its initial speed; the torque is a
+  // timed load on phi
+  for (const PulleyDesc& p : _pulleys) {
+    if (!p.free()) {
+      _pulleyBlock.push_back(-1);
+      continue;
+    }
+    const int blk = _numBlocks++;
+    _pulleyBlock.push_back(blk);
+    for (std::vector<double>* v : {&_q0, &_nodalForce, &_v0}) v->resize(numDofs(), 0.0);
+    for (std::vector<char>* v : {&_fixed, &_multiplier}) v->resize(numDofs(), 0);
+    _fixed[blk * _dim + 1] = 1;
+    _v0[blk * _dim] = p.speed.at(0.0).f;
+    const bool noTorque = p.torque.kind == TimeFunction::Kind::Constant && p.torque.value == 0.0;
+    if (!noTorque) _timed.push_back({p.torque, {blk * _dim}, {1.0}});
+  }
   for (const ContactDesc& c : scene.contacts) {
     PulleyContactSet set;
     for (size_t b = 0; b < _bodies.size(); ++b)
@@ -137,6 +153,20 @@ void Model::addContacts(const SceneDescription& scene) {
         if (_pulleys[p].name == name) set.pulleys.push_back(static_cast<int>(p));
     set.law = c.law;
     set.points = c.points;
+    // each element of the body couples to each free pulley it may touch (exact preallocation: the
+    // pattern is reserved once, whatever the contact does)
+    for (int p : set.pulleys) {
+      if (_pulleyBlock[p] < 0) continue;
+      for (const ElementGroup& g : _groups)
+        for (int e = 0; e < g.size(); ++e) {
+          if (g.body[e] != set.body) continue;
+          Coupling cpl;
+          cpl.pulley = p;
+          cpl.blocks.assign(g.blocksOf(e), g.blocksOf(e) + g.blocksPerElement);
+          cpl.blocks.push_back(_pulleyBlock[p]);
+          _couplings.push_back(std::move(cpl));
+        }
+    }
     _contacts.push_back(std::move(set));
   }
 }
@@ -158,6 +188,8 @@ bool Model::velocityDependent() const {
     if (b.velocityDependent) return true;
   for (const PulleyContactSet& c : _contacts)  // contact damping and friction depend on the belt's velocity
     if (c.law.damping > 0.0 || c.law.friction != contact::FrictionLaw::None) return true;
+  for (const PulleyDesc& p : _pulleys)
+    if (p.free() && p.damping > 0.0) return true;
   return false;
 }
 

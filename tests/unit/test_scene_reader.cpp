@@ -1369,6 +1369,22 @@ TEST(SceneReader, PulleysContactAndWrapPathsAreReadAndChecked) {
                         5, "pulleys[1].name", "a second pulley named 'drum'"));
   EXPECT_TRUE(failsWith(edit(head + wrap + contact, "dimension: 2", "dimension: 3"), 3, "pulleys",
                         "only when dimension is 2"));
+  // a pulley free to turn: dynamics only; damping and torque only with inertia; its speed a number
+  const std::string dyn = edit(head, "analysis: static", "analysis: dynamic");
+  const std::string dynTail = wrap + contact + "dynamics: {dt: 1e-3, t_end: 0.1}\n";  // lines 10 .. 13
+  const SceneDescription f = parseScene(
+      edit(dyn, "speed: -1}", "speed: 2, inertia: 0.3, damping: 0.1, torque: {function: ramp, end: 1, value: 5}}") + dynTail,
+      "scene.yaml");
+  EXPECT_TRUE(f.pulleys[0].free());
+  EXPECT_DOUBLE_EQ(f.pulleys[0].inertia, 0.3);
+  EXPECT_DOUBLE_EQ(f.pulleys[0].damping, 0.1);
+  EXPECT_DOUBLE_EQ(f.pulleys[0].torque.at(0.5).f, 2.5);
+  EXPECT_TRUE(failsWith(edit(head, "speed: -1}", "speed: -1, inertia: 0.3}") + wrap + contact, 4, "pulleys[0].inertia",
+                        "only with analysis: dynamic"));
+  EXPECT_TRUE(failsWith(edit(dyn, "speed: -1}", "speed: -1, damping: 0.1}") + dynTail, 4, "pulleys[0].damping",
+                        "only for a pulley free to turn"));
+  EXPECT_TRUE(failsWith(edit(dyn, "speed: -1}", "speed: {function: linear, rate: 1}, inertia: 0.3}") + dynTail, 4,
+                        "pulleys[0].speed", "a free pulley's speed is its initial speed"));
   // a closed belt around two pulleys, pretensioned
   const std::string two = edit(head, "speed: -1}", "speed: -1}\n  - {name: idler, center: [2, 0], radius: 0.25}");  // line 5
   const std::string loop =

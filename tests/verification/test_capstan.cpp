@@ -232,7 +232,7 @@ namespace {
 
 struct DynamicRun {
   std::vector<solvers::DynamicsStep> steps;
-  std::vector<double> q;
+  std::vector<double> q, v;  // coordinates and velocities at the end (model numbering)
   std::string failure;
 };
 
@@ -256,8 +256,11 @@ DynamicRun runDynamics(const model::SceneDescription& sc, double dt, double tEnd
     PetscCallAbort(comm, dyn.run(X, V, cb, &r.failure));
   }
   PetscCallAbort(comm, p.assembler().gatherToRoot(X, r.q));
+  PetscCallAbort(comm, p.assembler().toModelOrder(V, r.v));
   r.q.resize(p.model().numDofs());
+  r.v.resize(p.model().numDofs());
   MPI_Bcast(r.q.data(), static_cast<int>(r.q.size()), MPI_DOUBLE, 0, comm);
+  MPI_Bcast(r.v.data(), static_cast<int>(r.v.size()), MPI_DOUBLE, 0, comm);
   VecDestroy(&X);
   VecDestroy(&V);
   return r;
@@ -328,4 +331,91 @@ TEST(Capstan, RopeSlidingOverAFrictionlessDrumConservesEnergy) {
   const double rhoA = 1000.0 * kEA / 1e9, M = 3.0 + rhoA * length, k = std::sqrt(2.0 * rhoA * 9.81 / M);
   const double xdot = 1.0 / (2.0 * rhoA) * k * std::sinh(k * last.time);
   EXPECT_NEAR(last.kinetic / (0.5 * M * xdot * xdot), 1.0, 1e-2);
+}
+
+// The same Atwood machine over a pulley free to turn (J = 0.5 kg m^2) with friction (mu = 0.5): the
+// rope grips it (the capstan allows T1/T2 up to e^{mu pi} = 4.8, the pulley's inertia needs far
+// less), so the pulley turns with the rope, omega = x' / rho, and adds J / rho^2 to the moving mass:
+// M x'' = (m1 - m2) g + 2 rho A g x with M = m1 + m2 + rho A L + J / rho^2 (rho: the rope's
+// centerline radius on the pulley). Regularized friction grips by creeping, |s| < v_s: omega lags
+// x' / rho by O(v_s) (measured 5.4e-3, 1.9e-3, 7.5e-4 at v_s = 0.03, 0.01, 0.003 m/s). At v_s =
+// 1e-3 m/s (dt 0.5 ms, rho_inf 1) Newton stalls: it converges linearly at about 0.9 per iteration
+// and gives up after step 49 (docs/contact.md). Energy: the pulley's kinetic energy is in T, the
+// friction's creep work in the contact's.
+TEST(Capstan, RopeTurnsAFreePulleyAsTheAtwoodMachineWithThePulleysInertia) {
+  const double pi = std::acos(-1.0), J = 0.5;
+  std::vector<double> lag;
+  for (double vs : {0.03, 0.01, 0.003}) {
+    Capstan c = capstan(pi, 0.5, 0.0, 0.05);
+    model::SceneDescription& sc = c.scene;
+    sc.analysis = model::Analysis::Dynamic;
+    sc.supports.clear();
+    sc.loads.nodal.clear();
+    sc.loads.gravity = {0, -9.81, 0};
+    sc.pulleys[0].inertia = J;
+    const double length = 2.0 * 1.0 + kR * pi;
+    model::PointMassDesc a, b;
+    a.at = 0.0;
+    a.mass = 2.0;
+    b.at = length;
+    b.mass = 1.0;
+    sc.bodies[0].pointMasses = {a, b};
+    sc.bodies[0].geometry.start = {-kR, -1.0, 0};
+    sc.bodies[0].geometry.end = {kR, -1.0, 0};
+    sc.bodies[0].elements = static_cast<int>(std::lround(length / 0.05));
+    sc.contacts[0].law.stiffness = 1e5;
+    sc.contacts[0].law.slipVelocity = vs;
+    const DynamicRun r = runDynamics(sc, 5e-4, 0.3, 1.0);
+    ASSERT_TRUE(r.failure.empty()) << r.failure;
+    solvers::Problem p(PETSC_COMM_WORLD, sc);
+    const int blk = p.model().pulleyBlock(0);
+    ASSERT_GE(blk, 0);
+    const double omega = r.v[2 * blk];
+    const solvers::DynamicsStep& last = r.steps.back();
+    double drift = 0.0, scale = 0.0;
+    for (const solvers::DynamicsStep& st : r.steps) {
+      scale = std::max({scale, st.kinetic, std::abs(st.potential)});
+      drift = std::max(drift, std::abs(st.energy() - r.steps.front().energy()));
+    }
+    // the rope sits on the pulley at rho = R - T / (R k) (T about 13 N: 2.6e-4 m)
+    const double rhoA = 1000.0 * kEA / 1e9, rho = kR - 13.0 / (kR * 1e5);
+    const double M = 3.0 + rhoA * length + J / (rho * rho), k = std::sqrt(2.0 * rhoA * 9.81 / M);
+    const double xdot = 1.0 / (2.0 * rhoA) * k * std::sinh(k * last.time);
+    lag.push_back(1.0 - omega / (xdot / rho));
+    int rank;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    if (rank == 0)
+      std::printf("Atwood over a free pulley, v_s = %g m/s: omega = %.5f rad/s (x'/rho = %.5f), T = %.5f J "
+                  "(M x'^2/2 = %.5f J), drift %.2e J of %.3f J\n",
+                  vs, omega, xdot / rho, last.kinetic, 0.5 * M * xdot * xdot, drift, scale);
+    EXPECT_NEAR(last.kinetic / (0.5 * M * xdot * xdot), 1.0, 1e-3);
+    EXPECT_LT(drift, 1e-4 * scale);
+  }
+  EXPECT_GT(lag[0], lag[1]);
+  EXPECT_GT(lag[1], lag[2]);
+  EXPECT_LT(lag[2], 1e-3);
+  EXPECT_GT(lag[2], 0.0);
+}
+
+// A free pulley's own terms: inertia J, rotational damping c and a load torque tau, under a rope
+// that slides on it without friction (no torque from the rope): J omega' = tau - c omega, so
+// omega(t) = tau / c (1 - exp(-c t / J)).
+TEST(Capstan, FreePulleySpinsUpUnderItsTorqueAgainstItsDamping) {
+  const double pi = std::acos(-1.0), J = 0.5, c = 2.0, tau = 3.0;
+  Capstan cap = capstan(pi, 0.0, 0.0, 0.05);
+  model::SceneDescription& sc = cap.scene;
+  sc.analysis = model::Analysis::Dynamic;
+  sc.pulleys[0].inertia = J;
+  sc.pulleys[0].damping = c;
+  sc.pulleys[0].torque.value = tau;
+  sc.bodies[0].section.set("damping_axial", 0.02);
+  const DynamicRun r = runDynamics(sc, 1e-3, 0.5, 0.9);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  solvers::Problem p(PETSC_COMM_WORLD, sc);
+  const double omega = r.v[2 * p.model().pulleyBlock(0)];
+  const double exact = tau / c * (1.0 - std::exp(-c * 0.5 / J));
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0) std::printf("free pulley at t = 0.5 s: omega = %.7f rad/s (exact %.7f)\n", omega, exact);
+  EXPECT_NEAR(omega / exact, 1.0, 1e-4);
 }

@@ -135,8 +135,9 @@ public:
   // F = Q, the contact forces on the belts (every row; V may be null: at rest). residual() holds -Q.
   bool hasContact() const { return !_model.contacts().empty(); }
   PetscErrorCode contactForce(Vec X, Vec V, PetscReal t, Vec F);
-  // What the belts exert on each pulley (Model::pulleys()): load[3 p .. 3 p + 2] = force x, y [N]
-  // and torque about its centre [N m, counterclockwise]; collective, every rank gets the sums.
+  // What the belts exert on each pulley (Model::pulleys()): load[4 p .. 4 p + 2] = force x, y [N]
+  // and torque about its centre [N m, counterclockwise], load[4 p + 3] its speed [rad/s] (a free
+  // pulley's from V, null: 0); collective, every rank gets the sums.
   PetscErrorCode pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<double>& load);
   // Index set of the free (unsupported) DOFs owned by this rank, global numbering.
   PetscErrorCode freeDofs(IS* is) const;

@@ -88,11 +88,13 @@ struct Joint {
   int count = 0;  // number of scalar equations
 };
 
-// A group of blocks coupled by one rigid body or one joint (graph, preallocation and ownership:
-// the rank that owns the first block assembles it).
+// A group of blocks coupled by one rigid body, one joint, or a belt element's contact with a free
+// pulley (graph, preallocation and ownership: the rank that owns the first block assembles it).
 struct Coupling {
   int rigidBody = -1, joint = -1;
-  std::vector<int> blocks;  // joint: multiplier blocks first, then the joint's blocks
+  std::vector<int> blocks;  // joint: multiplier blocks first, then the joint's blocks; contact: the
+                            // element's blocks, then the pulley's
+  int pulley = -1;
 };
 
 // The elements of one kind, over all bodies of that kind: per element its body, its index in the
@@ -184,8 +186,10 @@ public:
   bool hasLoadFunction() const { return _loadFunction.has_value(); }
   double loadFactor(double t) const { return _loadFunction ? _loadFunction->at(t).f : 1.0; }
   const Vec3& gravity() const { return _gravity; }  // also acts on point masses
-  // Pulleys (prescribed rotation, no DOFs) and the bodies in contact with them.
+  // Pulleys and the bodies in contact with them. A free pulley (PulleyDesc::free) has a block of
+  // its own, (phi, an unused coordinate held at zero): pulleyBlock(p), -1 for a driven one.
   const std::vector<PulleyDesc>& pulleys() const { return _pulleys; }
+  int pulleyBlock(int p) const { return _pulleyBlock[p]; }
   const std::vector<PulleyContactSet>& contacts() const { return _contacts; }
   // Rotating frame (absent: omega 0). The angular speed may be changed between solves (sweeps).
   const RotationDesc& rotation() const { return _rotation; }
@@ -225,6 +229,7 @@ private:
   std::vector<PrescribedCoordinate> _prescribed;
   Vec3 _gravity{};
   std::vector<PulleyDesc> _pulleys;
+  std::vector<int> _pulleyBlock;
   std::vector<PulleyContactSet> _contacts;
   RotationDesc _rotation;
   ReferenceScales _scales;

@@ -337,14 +337,20 @@ struct HubBeamDesc {
   SourceMark mark;
 };
 
-// A pulley (issue 34): a rigid circle of `radius` about a fixed `center`, turning at speed(t)
-// [rad/s, counterclockwise; zero: a fixed drum]. Its speed is prescribed: the pulley has no DOFs.
+// A pulley (issue 34): a rigid circle of `radius` about a fixed `center`. Driven (no inertia): it
+// turns at speed(t) [rad/s, counterclockwise; zero: a fixed drum] and has no DOFs. Free (inertia
+// J > 0; dynamics): its angle is an unknown, speed is its initial speed, and it feels the belts'
+// torque, torque(t) [N m, counterclockwise] and a rotational damping -damping * omega.
 struct PulleyDesc {
   std::string name;
   SourceMark mark;
   Vec3 center{};
   double radius = 0.0;
   TimeFunction speed;
+  double inertia = 0.0;  // > 0: free to turn [kg m^2]
+  double damping = 0.0;  // [N m s/rad]
+  TimeFunction torque;   // [N m]
+  bool free() const { return inertia > 0.0; }
 };
 
 // Distributed contact between one body and pulleys (contact/PulleyContact.hpp): the law, and the
