@@ -11,7 +11,7 @@
 namespace strand::assembly {
 
 namespace {
-PetscLogEvent evResidual = 0, evJacobian = 0, evMass = 0, evDynJacobian = 0;
+PetscLogEvent evResidual = 0, evJacobian = 0, evMass = 0, evDynJacobian = 0, evContact = 0;
 void registerEvents() {
   static bool done = false;
   if (done) return;
@@ -21,6 +21,7 @@ void registerEvents() {
   PetscLogEventRegister("Strand:Asm:Jacob", cid, &evJacobian);
   PetscLogEventRegister("Strand:Asm:Mass", cid, &evMass);
   PetscLogEventRegister("Strand:Asm:DynJac", cid, &evDynJacobian);
+  PetscLogEventRegister("Strand:Asm:Contact", cid, &evContact);  // inside the three above
   done = true;
 }
 }  // namespace
@@ -296,8 +297,10 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal t, PetscReal 
   for (const auto& f : _families) PetscCallCXX(f->residual(x.a, v.a, loadFactor, r.a));
   _moments->residual(x.a, loadFactor, r.a);
   PetscCallCXX(_multibody->residual(x.a, _constraintScale, loadFactor, r.a));
+  PetscCall(PetscLogEventBegin(evContact, 0, 0, 0, 0));
   _contacts->residual(x.a, V ? v.a : nullptr, t, r.a);
   _contacts->pulleyResidual(V ? v.a : nullptr, r.a);  // free pulleys' rotational damping
+  PetscCall(PetscLogEventEnd(evContact, 0, 0, 0, 0));
   PetscCall(endLocalSum(&r));
   // owned rows: nodal forces and supports
   PetscScalar* owned;
@@ -332,7 +335,9 @@ PetscErrorCode Assembler::staticJacobian(Vec X, PetscReal loadFactor, Mat J) {
   for (const auto& f : _families) PetscCall(f->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_moments->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, _constraintScale, 0.0, loadFactor, J, _fixedLocal));
+  PetscCall(PetscLogEventBegin(evContact, 0, 0, 0, 0));
   PetscCall(_contacts->jacobian(x.a, nullptr, 0.0, 0.0, J, nullptr, _fixedLocal));
+  PetscCall(PetscLogEventEnd(evContact, 0, 0, 0, 0));
   PetscCall(endLocal(&x));
   PetscCall(assembleWithSupportDiagonal(J));
   PetscCall(PetscLogEventEnd(evJacobian, 0, 0, 0, 0));
@@ -352,8 +357,10 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal s
   for (const auto& f : _families) PetscCall(f->dynamicJacobian(x.a, v.a, loadFactor, shiftV, shiftA, J, D, _fixedLocal));
   PetscCall(_moments->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, _constraintScale, shiftA, loadFactor, J, _fixedLocal));
+  PetscCall(PetscLogEventBegin(evContact, 0, 0, 0, 0));
   PetscCall(_contacts->jacobian(x.a, V ? v.a : nullptr, t, shiftV, J, D, _fixedLocal));
   PetscCall(_contacts->pulleyMatrices(shiftV, shiftA, J, D));
+  PetscCall(PetscLogEventEnd(evContact, 0, 0, 0, 0));
   if (A && V && hasVariableMass()) {
     LocalRead a;
     PetscCall(beginLocal(A, _rWork, &a));

@@ -77,6 +77,7 @@ PulleyContacts::PulleyContacts(const model::Model& model, const model::DofMap& d
         });
         b.weight.push_back(rule.w[g] * body.elementLength);
       }
+      b.reach = 2.0 * body.elementLength;
       if (!b.elements.empty()) _bodies.push_back(std::move(b));
     }
   }
@@ -104,6 +105,14 @@ std::vector<contact::PulleyState> PulleyContacts::pulleysAt(double t, const doub
   return out;
 }
 
+bool PulleyContacts::mayTouch(const LocalBody& b, int k, const double* x, const contact::PulleyState& p,
+                              const contact::ContactLaw& law) const {
+  const PetscInt dof = b.group->localBlocksOf(b.elements[k])[0] * 2;  // node 1's position block
+  const double dx = _q0[dof] + x[dof] - p.c[0], dy = _q0[dof + 1] + x[dof + 1] - p.c[1];
+  const double reach = p.radius + law.offset + b.reach;
+  return dx * dx + dy * dy <= reach * reach;
+}
+
 void PulleyContacts::pointState(const LocalBody& b, int k, int g, const double* x, const double* v, double* r,
                                 double* vel) const {
   const PetscInt* lb = b.group->localBlocksOf(b.elements[k]);
@@ -125,14 +134,18 @@ void PulleyContacts::residual(const double* x, const double* v, double t, double
   for (const LocalBody& b : _bodies) {
     const model::PulleyContactSet& set = _model.contacts()[b.set];
     const int points = static_cast<int>(b.weight.size());
+    std::vector<char> near(pulleys.size(), 0);
     for (int k = 0; k < static_cast<int>(b.elements.size()); ++k) {
+      bool any = false;
+      for (int p : set.pulleys) any |= (near[p] = mayTouch(b, k, x, pulleys[p], set.law));
+      if (!any) continue;
       const PetscInt* lb = b.group->localBlocksOf(b.elements[k]);
       for (int g = 0; g < points; ++g) {
         double rg[2], vg[2];
         pointState(b, k, g, x, v, rg, vg);
         for (int p : set.pulleys) {
           double f[2];
-          if (!contact::pointForce(set.law, pulleys[p], rg, vg, f)) continue;
+          if (!near[p] || !contact::pointForce(set.law, pulleys[p], rg, vg, f)) continue;
           const double* w = &b.w[static_cast<size_t>(g) * b.stride];
           for (int a = 0; a < b.stride; ++a)
             for (int i = 0; i < 2; ++i) r[lb[a] * 2 + i] -= scale * b.weight[g] * w[a] * f[i];
@@ -166,15 +179,17 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
     for (int p : set.pulleys)
       if (_pulleyLocal[p] >= 0)
         for (auto* m : {&colJ[p], &colD[p], &rowJ[p], &rowD[p]}) m->assign(static_cast<size_t>(n) * 2, 0.0);
+    std::vector<char> near(pulleys.size(), 0);
     for (int k = 0; k < static_cast<int>(b.elements.size()); ++k) {
-      bool any = false;
+      bool any = false, nearAny = false;
       std::fill(touched.begin(), touched.end(), 0);
-      for (int g = 0; g < points; ++g) {
+      for (int p : set.pulleys) nearAny |= (near[p] = mayTouch(b, k, x, pulleys[p], set.law));
+      for (int g = 0; g < points && nearAny; ++g) {
         double rg[2], vg[2];
         pointState(b, k, g, x, v, rg, vg);
         for (int p : set.pulleys) {
           double f[2], dr[4], dv[4], dw[2];
-          if (!contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw).closed) continue;
+          if (!near[p] || !contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw).closed) continue;
           if (!any) {
             std::fill(Kj.begin(), Kj.end(), 0.0);
             std::fill(Kd.begin(), Kd.end(), 0.0);
@@ -284,7 +299,7 @@ void PulleyContacts::pulleyLoads(const double* x, const double* v, double t, dou
         pointState(b, k, g, x, v, rg, vg);
         for (int p : set.pulleys) {
           double f[2];
-          if (!contact::pointForce(set.law, pulleys[p], rg, vg, f)) continue;
+          if (!mayTouch(b, k, x, pulleys[p], set.law) || !contact::pointForce(set.law, pulleys[p], rg, vg, f)) continue;
           const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
           load[4 * p] -= b.weight[g] * f[0];
           load[4 * p + 1] -= b.weight[g] * f[1];

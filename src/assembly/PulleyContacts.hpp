@@ -64,7 +64,14 @@ private:
     const model::DofMap::LocalGroup* group = nullptr;
     std::vector<double> w;        // points x stride interpolation weights
     std::vector<double> weight;   // per point: Gauss weight times element length
+    double reach = 0.0;           // 2 L_e
   };
+  // Whether local element k may touch pulley p: its first node lies within R + offset + 2 L_e of
+  // the centre (every point of an element stretched less than 100 % lies within 2 L_e of its first
+  // node). The contact search: one distance per element and pulley instead of the law at every
+  // Gauss point.
+  bool mayTouch(const LocalBody& b, int k, const double* x, const contact::PulleyState& p,
+                const contact::ContactLaw& law) const;
   // r and v at Gauss point g of local element k (q0 + x; v null: zero).
   void pointState(const LocalBody& b, int k, int g, const double* x, const double* v, double* r, double* vel) const;
   // The pulleys at time t; free ones with omega from v (null: 0).
