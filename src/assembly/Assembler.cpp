@@ -588,8 +588,7 @@ PetscErrorCode Assembler::contactPoints(Vec X, Vec V, PetscReal t, std::vector<C
   PetscCall(beginLocal(X, _xWork, &x));
   if (V) PetscCall(beginLocal(V, _vWork, &v));
   out.clear();
-  for (const PulleyContacts::PointState& p : _contacts->points(x.a, V ? v.a : nullptr, t))
-    out.push_back({p.body, p.element, p.pulley, p.point, {p.r[0], p.r[1]}, p.state});
+  _contacts->points(x.a, V ? v.a : nullptr, t, out);
   PetscCall(endLocal(&x));
   if (V) PetscCall(endLocal(&v));
   PetscFunctionReturn(0);

@@ -9,13 +9,16 @@ namespace strand::assembly {
 
 namespace {
 
-// tau = (d x (-f))_z at a point (d = r - c) and its derivatives in r, v (2 each) and omega.
+// The torque about the pulley's centre of the belt's pull -f at d = r - c: (d x (-f))_z.
+double torqueOf(const double* d, const double* f) { return -(d[0] * f[1] - d[1] * f[0]); }
+
+// tau = torqueOf(d, f) and its derivatives in r, v (2 each) and omega.
 struct PointTorque {
   double tau, dr[2], dv[2], domega;
 };
 PointTorque pointTorque(const double* d, const double* f, const double* dfdr, const double* dfdv, const double* dfdw) {
   PointTorque t;
-  t.tau = -(d[0] * f[1] - d[1] * f[0]);
+  t.tau = torqueOf(d, f);
   t.dr[0] = -(f[1] + d[0] * dfdr[2] - d[1] * dfdr[0]);
   t.dr[1] = -(-f[0] + d[0] * dfdr[3] - d[1] * dfdr[1]);
   for (int j = 0; j < 2; ++j) t.dv[j] = -(d[0] * dfdv[2 + j] - d[1] * dfdv[j]);
@@ -23,26 +26,28 @@ PointTorque pointTorque(const double* d, const double* f, const double* dfdr, co
   return t;
 }
 
-// J (and D) += an element's coupling to a free pulley's block pg: belt rows x phi column (col,
-// n x 2, column 1 zero), phi row x belt columns (row, the first n of a 2 x n block; the held second
-// coordinate's row stays zero) and phi x phi (self).
-PetscErrorCode insertCoupling(Mat J, Mat D, int stride, const PetscInt* gb, PetscInt pg, const std::vector<double>& colJ,
-                              const std::vector<double>& colD, const std::vector<double>& rowJ,
-                              const std::vector<double>& rowD, double selfJ, double selfD) {
+// The Newton (J) and damping (D) entries of an element's coupling to a free pulley's block: belt
+// rows x phi column (n x 2, its column 1 zero), phi row x belt columns (the first n of a 2 x n
+// block: the held second coordinate's row stays zero) and phi x phi.
+struct PulleyCoupling {
+  std::vector<double> colJ, colD, rowJ, rowD;  // n x 2 and 2 x n
+  double selfJ = 0.0, selfD = 0.0;
+  void zero(size_t n) {
+    for (auto* m : {&colJ, &colD, &rowJ, &rowD}) m->assign(2 * n, 0.0);
+    selfJ = selfD = 0.0;
+  }
+};
+
+PetscErrorCode insertCoupling(Mat J, Mat D, int stride, const PetscInt* gb, PetscInt pg, const PulleyCoupling& c) {
   PetscFunctionBeginUser;
-  const size_t n = static_cast<size_t>(stride) * 2;
-  std::vector<double> row2(2 * n, 0.0);
-  std::copy(rowJ.begin(), rowJ.begin() + n, row2.begin());
-  const double self2[4] = {selfJ, 0.0, 0.0, 0.0};
-  PetscCall(MatSetValuesBlocked(J, stride, gb, 1, &pg, colJ.data(), ADD_VALUES));
-  PetscCall(MatSetValuesBlocked(J, 1, &pg, stride, gb, row2.data(), ADD_VALUES));
-  PetscCall(MatSetValuesBlocked(J, 1, &pg, 1, &pg, self2, ADD_VALUES));
+  const double selfJ[4] = {c.selfJ, 0.0, 0.0, 0.0}, selfD[4] = {c.selfD, 0.0, 0.0, 0.0};
+  PetscCall(MatSetValuesBlocked(J, stride, gb, 1, &pg, c.colJ.data(), ADD_VALUES));
+  PetscCall(MatSetValuesBlocked(J, 1, &pg, stride, gb, c.rowJ.data(), ADD_VALUES));
+  PetscCall(MatSetValuesBlocked(J, 1, &pg, 1, &pg, selfJ, ADD_VALUES));
   if (D) {
-    std::copy(rowD.begin(), rowD.begin() + n, row2.begin());
-    const double selfD2[4] = {selfD, 0.0, 0.0, 0.0};
-    PetscCall(MatSetValuesBlocked(D, stride, gb, 1, &pg, colD.data(), ADD_VALUES));
-    PetscCall(MatSetValuesBlocked(D, 1, &pg, stride, gb, row2.data(), ADD_VALUES));
-    PetscCall(MatSetValuesBlocked(D, 1, &pg, 1, &pg, selfD2, ADD_VALUES));
+    PetscCall(MatSetValuesBlocked(D, stride, gb, 1, &pg, c.colD.data(), ADD_VALUES));
+    PetscCall(MatSetValuesBlocked(D, 1, &pg, stride, gb, c.rowD.data(), ADD_VALUES));
+    PetscCall(MatSetValuesBlocked(D, 1, &pg, 1, &pg, selfD, ADD_VALUES));
   }
   PetscFunctionReturn(0);
 }
@@ -128,35 +133,42 @@ void PulleyContacts::pointState(const LocalBody& b, int k, int g, const double* 
   }
 }
 
-void PulleyContacts::residual(const double* x, const double* v, double t, double* r, double scale) const {
-  if (_bodies.empty()) return;
-  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+template <class F>
+void PulleyContacts::forEachNearPoint(const double* x, const double* v,
+                                      const std::vector<contact::PulleyState>& pulleys, F&& f) const {
+  std::vector<char> near(pulleys.size(), 0);
   for (const LocalBody& b : _bodies) {
     const model::PulleyContactSet& set = _model.contacts()[b.set];
-    const int points = static_cast<int>(b.weight.size());
-    std::vector<char> near(pulleys.size(), 0);
     for (int k = 0; k < static_cast<int>(b.elements.size()); ++k) {
       bool any = false;
       for (int p : set.pulleys) any |= (near[p] = mayTouch(b, k, x, pulleys[p], set.law));
       if (!any) continue;
-      const PetscInt* lb = b.group->localBlocksOf(b.elements[k]);
-      for (int g = 0; g < points; ++g) {
+      for (int g = 0; g < static_cast<int>(b.weight.size()); ++g) {
         double rg[2], vg[2];
         pointState(b, k, g, x, v, rg, vg);
-        for (int p : set.pulleys) {
-          double f[2];
-          if (!near[p] || !contact::pointForce(set.law, pulleys[p], rg, vg, f)) continue;
-          const double* w = &b.w[static_cast<size_t>(g) * b.stride];
-          for (int a = 0; a < b.stride; ++a)
-            for (int i = 0; i < 2; ++i) r[lb[a] * 2 + i] -= scale * b.weight[g] * w[a] * f[i];
-          if (_pulleyLocal[p] >= 0) {  // the belt's torque on a free pulley
-            const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
-            r[_pulleyLocal[p] * 2] -= scale * b.weight[g] * -(d[0] * f[1] - d[1] * f[0]);
-          }
-        }
+        for (int p : set.pulleys)
+          if (near[p]) f(b, set, k, g, p, rg, vg);
       }
     }
   }
+}
+
+void PulleyContacts::residual(const double* x, const double* v, double t, double* r, double scale) const {
+  if (_bodies.empty()) return;
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+  forEachNearPoint(x, v, pulleys, [&](const LocalBody& b, const model::PulleyContactSet& set, int k, int g, int p,
+                                      const double* rg, const double* vg) {
+    double f[2];
+    if (!contact::pointForce(set.law, pulleys[p], rg, vg, f)) return;
+    const PetscInt* lb = b.group->localBlocksOf(b.elements[k]);
+    const double* w = &b.w[static_cast<size_t>(g) * b.stride];
+    for (int a = 0; a < b.stride; ++a)
+      for (int i = 0; i < 2; ++i) r[lb[a] * 2 + i] -= scale * b.weight[g] * w[a] * f[i];
+    if (_pulleyLocal[p] >= 0) {  // the belt's torque on a free pulley
+      const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
+      r[_pulleyLocal[p] * 2] -= scale * b.weight[g] * torqueOf(d, f);
+    }
+  });
 }
 
 PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double t, double shiftV, Mat J, Mat D,
@@ -164,45 +176,30 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
   PetscFunctionBeginUser;
   if (_bodies.empty()) PetscFunctionReturn(0);
   const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
-  const int nPulleys = static_cast<int>(pulleys.size());
   std::vector<double> Kj, Kd;
-  // per free pulley touched by the element: belt rows x phi column (n x 2), phi row x belt columns
-  // (2 x n), phi x phi (2 x 2); J and D parts
-  std::vector<std::vector<double>> colJ(nPulleys), colD(nPulleys), rowJ(nPulleys), rowD(nPulleys);
-  std::vector<double> selfJ(nPulleys), selfD(nPulleys);
-  std::vector<char> touched(nPulleys);
+  std::vector<PulleyCoupling> coupling(pulleys.size());  // per free pulley, this element's entries
+  std::vector<char> near(pulleys.size(), 0);
   for (const LocalBody& b : _bodies) {
     const model::PulleyContactSet& set = _model.contacts()[b.set];
-    const int points = static_cast<int>(b.weight.size()), n = b.stride * 2;
-    Kj.assign(static_cast<size_t>(n) * n, 0.0);
-    Kd.assign(static_cast<size_t>(n) * n, 0.0);
-    for (int p : set.pulleys)
-      if (_pulleyLocal[p] >= 0)
-        for (auto* m : {&colJ[p], &colD[p], &rowJ[p], &rowD[p]}) m->assign(static_cast<size_t>(n) * 2, 0.0);
-    std::vector<char> near(pulleys.size(), 0);
+    const int n = b.stride * 2;
     for (int k = 0; k < static_cast<int>(b.elements.size()); ++k) {
-      bool any = false, nearAny = false;
-      std::fill(touched.begin(), touched.end(), 0);
+      bool touching = false, nearAny = false;
       for (int p : set.pulleys) nearAny |= (near[p] = mayTouch(b, k, x, pulleys[p], set.law));
-      for (int g = 0; g < points && nearAny; ++g) {
+      if (nearAny) {
+        Kj.assign(static_cast<size_t>(n) * n, 0.0);
+        Kd.assign(static_cast<size_t>(n) * n, 0.0);
+      }
+      for (int p : set.pulleys)
+        if (_pulleyLocal[p] >= 0) coupling[p].zero(n);
+      for (int g = 0; g < static_cast<int>(b.weight.size()) && nearAny; ++g) {
         double rg[2], vg[2];
         pointState(b, k, g, x, v, rg, vg);
+        const double* w = &b.w[static_cast<size_t>(g) * b.stride];
+        const double W = b.weight[g];
         for (int p : set.pulleys) {
           double f[2], dr[4], dv[4], dw[2];
           if (!near[p] || !contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw).closed) continue;
-          if (!any) {
-            std::fill(Kj.begin(), Kj.end(), 0.0);
-            std::fill(Kd.begin(), Kd.end(), 0.0);
-            any = true;
-          }
-          const bool free = _pulleyLocal[p] >= 0;
-          if (free && !touched[p]) {
-            for (auto* m : {&colJ[p], &colD[p], &rowJ[p], &rowD[p]}) std::fill(m->begin(), m->end(), 0.0);
-            selfJ[p] = selfD[p] = 0.0;
-            touched[p] = 1;
-          }
-          const double* w = &b.w[static_cast<size_t>(g) * b.stride];
-          const double W = b.weight[g];
+          touching = true;
           for (int a = 0; a < b.stride; ++a)
             for (int c = 0; c < b.stride; ++c) {
               const double s = W * w[a] * w[c];
@@ -214,50 +211,41 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
                   Kd[at] -= s * dv[i * 2 + j];
                 }
             }
-          if (!free) continue;
+          if (_pulleyLocal[p] < 0) continue;
+          PulleyCoupling& cp = coupling[p];
           const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
           const PointTorque tq = pointTorque(d, f, dr, dv, dw);
           for (int a = 0; a < b.stride; ++a)
             for (int i = 0; i < 2; ++i) {
               // belt row (a, i), phi column: -dQ/domega (a velocity)
-              colJ[p][static_cast<size_t>(a * 2 + i) * 2] -= W * w[a] * shiftV * dw[i];
-              colD[p][static_cast<size_t>(a * 2 + i) * 2] -= W * w[a] * dw[i];
+              cp.colJ[static_cast<size_t>(a * 2 + i) * 2] -= W * w[a] * shiftV * dw[i];
+              cp.colD[static_cast<size_t>(a * 2 + i) * 2] -= W * w[a] * dw[i];
               // phi row, belt column (a, i): -dtau/dq - shiftV dtau/dv
-              rowJ[p][a * 2 + i] -= W * w[a] * (tq.dr[i] + shiftV * tq.dv[i]);
-              rowD[p][a * 2 + i] -= W * w[a] * tq.dv[i];
+              cp.rowJ[a * 2 + i] -= W * w[a] * (tq.dr[i] + shiftV * tq.dv[i]);
+              cp.rowD[a * 2 + i] -= W * w[a] * tq.dv[i];
             }
-          selfJ[p] -= W * shiftV * tq.domega;
-          selfD[p] -= W * tq.domega;
+          cp.selfJ -= W * shiftV * tq.domega;
+          cp.selfD -= W * tq.domega;
         }
-      }
-      const PetscInt* gb = b.group->globalBlocksOf(b.elements[k]);
-      // every element's couplings to the free pulleys are inserted, zeros where it does not touch:
-      // assembly squeezes out unused slots, and a later contact would find no room
-      for (int p : set.pulleys)
-        if (_pulleyLocal[p] >= 0 && !touched[p]) {
-          for (auto* m : {&colJ[p], &colD[p], &rowJ[p], &rowD[p]}) std::fill(m->begin(), m->end(), 0.0);
-          selfJ[p] = selfD[p] = 0.0;
-          touched[p] = 1;
-        }
-      if (!any) {
-        for (int p : set.pulleys)
-          if (_pulleyLocal[p] >= 0) PetscCall(insertCoupling(J, D, b.stride, gb, _pulleyGlobal[p], colJ[p], colD[p],
-                                                                 rowJ[p], rowD[p], 0.0, 0.0));
-        continue;
       }
       const PetscInt* lb = b.group->localBlocksOf(b.elements[k]);
+      const PetscInt* gb = b.group->globalBlocksOf(b.elements[k]);
       auto isFixed = [&](int a) { return fixed[lb[a / 2] * 2 + a % 2] != 0; };
-      for (int a = 0; a < n; ++a)
-        for (int c = 0; c < n; ++c)
-          if (isFixed(a) || isFixed(c)) Kj[static_cast<size_t>(a) * n + c] = Kd[static_cast<size_t>(a) * n + c] = 0.0;
-      PetscCall(MatSetValuesBlocked(J, b.stride, gb, b.stride, gb, Kj.data(), ADD_VALUES));
-      if (D) PetscCall(MatSetValuesBlocked(D, b.stride, gb, b.stride, gb, Kd.data(), ADD_VALUES));
-      for (int p = 0; p < nPulleys; ++p) {
-        if (!touched[p]) continue;
+      if (touching) {
         for (int a = 0; a < n; ++a)
-          if (isFixed(a)) colJ[p][a * 2] = colD[p][a * 2] = rowJ[p][a] = rowD[p][a] = 0.0;
-        PetscCall(insertCoupling(J, D, b.stride, gb, _pulleyGlobal[p], colJ[p], colD[p], rowJ[p], rowD[p], selfJ[p],
-                                 selfD[p]));
+          for (int c = 0; c < n; ++c)
+            if (isFixed(a) || isFixed(c)) Kj[static_cast<size_t>(a) * n + c] = Kd[static_cast<size_t>(a) * n + c] = 0.0;
+        PetscCall(MatSetValuesBlocked(J, b.stride, gb, b.stride, gb, Kj.data(), ADD_VALUES));
+        if (D) PetscCall(MatSetValuesBlocked(D, b.stride, gb, b.stride, gb, Kd.data(), ADD_VALUES));
+      }
+      // every element's couplings to the free pulleys are inserted, zeros where it does not touch:
+      // assembly squeezes out unused slots, and a later contact would find no room
+      for (int p : set.pulleys) {
+        if (_pulleyLocal[p] < 0) continue;
+        PulleyCoupling& cp = coupling[p];
+        for (int a = 0; a < n; ++a)
+          if (isFixed(a)) cp.colJ[a * 2] = cp.colD[a * 2] = cp.rowJ[a] = cp.rowD[a] = 0.0;
+        PetscCall(insertCoupling(J, D, b.stride, gb, _pulleyGlobal[p], cp));
       }
     }
   }
@@ -291,42 +279,27 @@ PetscErrorCode PulleyContacts::mass(Mat M) const {
 
 void PulleyContacts::pulleyLoads(const double* x, const double* v, double t, double* load) const {
   const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
-  for (const LocalBody& b : _bodies) {
-    const model::PulleyContactSet& set = _model.contacts()[b.set];
-    for (int k = 0; k < static_cast<int>(b.elements.size()); ++k)
-      for (int g = 0; g < static_cast<int>(b.weight.size()); ++g) {
-        double rg[2], vg[2];
-        pointState(b, k, g, x, v, rg, vg);
-        for (int p : set.pulleys) {
-          double f[2];
-          if (!mayTouch(b, k, x, pulleys[p], set.law) || !contact::pointForce(set.law, pulleys[p], rg, vg, f)) continue;
-          const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
-          load[4 * p] -= b.weight[g] * f[0];
-          load[4 * p + 1] -= b.weight[g] * f[1];
-          load[4 * p + 2] -= b.weight[g] * (d[0] * f[1] - d[1] * f[0]);
-        }
-      }
-  }
+  forEachNearPoint(x, v, pulleys, [&](const LocalBody& b, const model::PulleyContactSet& set, int, int g, int p,
+                                      const double* rg, const double* vg) {
+    double f[2];
+    if (!contact::pointForce(set.law, pulleys[p], rg, vg, f)) return;
+    const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
+    load[4 * p] -= b.weight[g] * f[0];
+    load[4 * p + 1] -= b.weight[g] * f[1];
+    load[4 * p + 2] += b.weight[g] * torqueOf(d, f);
+  });
   for (int p : _ownedFree) load[4 * p + 3] += pulleys[p].omega;
 }
 
-std::vector<PulleyContacts::PointState> PulleyContacts::points(const double* x, const double* v, double t) const {
-  std::vector<PointState> out;
+void PulleyContacts::points(const double* x, const double* v, double t,
+                            std::vector<Assembler::ContactPointOut>& out) const {
   const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
-  for (const LocalBody& b : _bodies) {
-    const model::PulleyContactSet& set = _model.contacts()[b.set];
-    for (int k = 0; k < static_cast<int>(b.elements.size()); ++k)
-      for (int g = 0; g < static_cast<int>(b.weight.size()); ++g) {
-        double rg[2], vg[2];
-        pointState(b, k, g, x, v, rg, vg);
-        for (int p : set.pulleys) {
-          double f[2], dr[4], dv[4], dw[2];
-          out.push_back({set.body, b.index[k], p, g, {rg[0], rg[1]},
-                         contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw)});
-        }
-      }
-  }
-  return out;
+  forEachNearPoint(x, v, pulleys, [&](const LocalBody& b, const model::PulleyContactSet& set, int k, int g, int p,
+                                      const double* rg, const double* vg) {
+    double f[2], dr[4], dv[4], dw[2];
+    out.push_back({set.body, b.index[k], p, g, {rg[0], rg[1]},
+                   contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw)});
+  });
 }
 
 }  // namespace strand::assembly

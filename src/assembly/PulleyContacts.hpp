@@ -18,6 +18,7 @@
 
 #include <vector>
 
+#include "strand/assembly/Assembler.hpp"
 #include "strand/contact/PulleyContact.hpp"
 #include "strand/model/DofMap.hpp"
 #include "strand/model/Model.hpp"
@@ -27,7 +28,6 @@ namespace strand::assembly {
 class PulleyContacts {
 public:
   PulleyContacts(const model::Model& model, const model::DofMap& dofs, const std::vector<double>& q0Local);
-  bool empty() const { return _bodies.empty() && _ownedFree.empty(); }
 
   // r -= scale Q on the belts' rows and the free pulleys' phi rows (ghosted-local arrays; x
   // displacements, v velocities or null: the belt at rest, free pulleys still).
@@ -47,13 +47,8 @@ public:
   // torque about its centre (counterclockwise), and (owned free pulleys) its speed.
   void pulleyLoads(const double* x, const double* v, double t, double* load) const;
 
-  // What a contact point found, for output: per local body, element and pulley, the point states.
-  struct PointState {
-    int body, element, pulley, point;  // model body, element index in it, pulley, Gauss point
-    double r[2];                       // the point's position
-    contact::ContactPoint state;
-  };
-  std::vector<PointState> points(const double* x, const double* v, double t) const;
+  // out += what the law finds at the Gauss points of this rank's elements near a pulley (mayTouch).
+  void points(const double* x, const double* v, double t, std::vector<Assembler::ContactPointOut>& out) const;
 
 private:
   struct LocalBody {
@@ -72,6 +67,11 @@ private:
   // Gauss point.
   bool mayTouch(const LocalBody& b, int k, const double* x, const contact::PulleyState& p,
                 const contact::ContactLaw& law) const;
+  // f(body, set, k, g, p, r, v) at every Gauss point g of every local element k near pulley p: the
+  // loop of the residual, the pulley loads and the output.
+  template <class F>
+  void forEachNearPoint(const double* x, const double* v, const std::vector<contact::PulleyState>& pulleys,
+                        F&& f) const;
   // r and v at Gauss point g of local element k (q0 + x; v null: zero).
   void pointState(const LocalBody& b, int k, int g, const double* x, const double* v, double* r, double* vel) const;
   // The pulleys at time t; free ones with omega from v (null: 0).

@@ -117,32 +117,32 @@ Model::Model(const SceneDescription& scene) : _dim(scene.dimension), _gravity(sc
   addBodies(b);                     // 1. bodies and their node blocks
   mergeJunctions(b);                // 2. junction nodes share one position block
   addRigidBodiesAndMultipliers(b);  //    rigid bodies' blocks, joints' multiplier blocks
+  addPulleyBlocks(b);               //    free pulleys' blocks
   placeInitialState(b);             // 3. q0, reference values, element groups
   addSupports(b);                   // 4. supports, multipliers, prescribed motion
   addLoads(b);                      // 5. loads
   addInitialVelocities(b);
   addJointEquations(b);             // 6. joint equations, checked at the initial state
   addCouplings();                   // 7. couplings: rigid bodies and joints
-  addContacts(scene);               // 8. belt-pulley contact (element-local: pulleys have no DOFs)
+  addContacts(scene);               // 8. belt-pulley contact and the free pulleys' state
+}
+
+void Model::addPulleyBlocks(Build& build) {
+  _pulleys = build.scene.pulleys;
+  for (const PulleyDesc& p : _pulleys) _pulleyBlock.push_back(p.free() ? _numBlocks++ : -1);
 }
 
 void Model::addContacts(const SceneDescription& scene) {
-  _pulleys = scene.pulleys;
-  // a free pulley's block (phi, unused): phi starts at 0 with its initial speed; the torque is a
-  // timed load on phi
-  for (const PulleyDesc& p : _pulleys) {
-    if (!p.free()) {
-      _pulleyBlock.push_back(-1);
-      continue;
-    }
-    const int blk = _numBlocks++;
-    _pulleyBlock.push_back(blk);
-    for (std::vector<double>* v : {&_q0, &_nodalForce, &_v0}) v->resize(numDofs(), 0.0);
-    for (std::vector<char>* v : {&_fixed, &_multiplier}) v->resize(numDofs(), 0);
+  // a free pulley's block (phi, unused held): phi starts at 0 with its initial speed; the torque is
+  // a timed load on phi
+  for (size_t p = 0; p < _pulleys.size(); ++p) {
+    const int blk = _pulleyBlock[p];
+    if (blk < 0) continue;
     _fixed[blk * _dim + 1] = 1;
-    _v0[blk * _dim] = p.speed.at(0.0).f;
-    const bool noTorque = p.torque.kind == TimeFunction::Kind::Constant && p.torque.value == 0.0;
-    if (!noTorque) _timed.push_back({p.torque, {blk * _dim}, {1.0}});
+    _v0[blk * _dim] = _pulleys[p].speed.at(0.0).f;
+    const TimeFunction& torque = _pulleys[p].torque;
+    const bool noTorque = torque.kind == TimeFunction::Kind::Constant && torque.value == 0.0;
+    if (!noTorque) _timed.push_back({torque, {blk * _dim}, {1.0}});
   }
   for (const ContactDesc& c : scene.contacts) {
     PulleyContactSet set;

@@ -17,7 +17,7 @@
 #include <string>
 
 #include "strand/solvers/Dynamics.hpp"
-#include "support/Scenes.hpp"
+#include "support/Belts.hpp"
 
 using namespace strand;
 using namespace strand::testing;
@@ -25,46 +25,18 @@ using namespace strand::testing;
 namespace {
 
 model::SceneDescription beltLoop(int elements, bool friction) {
-  const double r = 0.5, h = 0.01, pi = std::acos(-1.0);
-  const double D = 0.5 * (elements * h - 2.0 * pi * r);
-  model::SceneDescription sc = cantilever(2, elements);
+  BeltLoop spec;  // r = 0.5 m, EA = 1e5 N, k = 1e7 N/m^2
+  spec.elements = elements;
+  spec.distance = 0.5 * (elements * 0.01 - 2.0 * std::acos(-1.0) * spec.radius);  // elements of 1 cm
+  spec.stretch = 1.001;
+  model::SceneDescription sc = closedBelt(spec);
   sc.analysis = model::Analysis::Dynamic;
-  sc.supports.clear();
-  model::BodyDesc& b = sc.bodies[0];
-  b.section.set("E", 1e9);
-  b.section.set("A", 1e-4);
-  b.section.set("I", 1e-12);
-  b.section.set("rho", 1000.0);
-  b.initialStretch = 1.001;
-  b.geometry.kind = model::GeometryKind::Wrap;
-  b.geometry.closed = true;
-  for (int k = 0; k < 2; ++k) {
-    model::PulleyDesc p;
-    p.name = k == 0 ? "a" : "b";
-    p.center = {k * D, 0.0, 0.0};
-    p.radius = r;
-    sc.pulleys.push_back(p);
-    model::WrapTurn w;
-    w.center = p.center;
-    w.radius = r;
-    b.geometry.wrap.push_back(w);
-  }
-  model::SupportDesc hold;  // x of node 0 (mid-span): the loop cannot slide round
-  hold.at.body = b.name;
-  hold.at.node = 0;
-  hold.type = model::SupportType::Fixed;
-  hold.dofs = {0};
-  sc.supports.push_back(hold);
-  model::ContactDesc c;
-  c.body = b.name;
-  c.pulleys = {"a", "b"};
-  c.law.stiffness = 1e7;
   if (friction) {
-    c.law.friction = contact::FrictionLaw::RegularizedCoulomb;
-    c.law.mu = 0.5;
-    c.law.slipVelocity = 1e-2;
+    contact::ContactLaw& law = sc.contacts[0].law;
+    law.friction = contact::FrictionLaw::RegularizedCoulomb;
+    law.mu = 0.5;
+    law.slipVelocity = 1e-2;
   }
-  sc.contacts.push_back(c);
   return sc;
 }
 

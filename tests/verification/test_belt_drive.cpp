@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "support/Scenes.hpp"
+#include "support/Belts.hpp"
 
 using namespace strand;
 using namespace strand::testing;
@@ -24,48 +24,14 @@ namespace {
 constexpr double kR = 0.5, kD = 1.0, kEA = 1e5, kStiffness = 1e8;
 
 model::SceneDescription beltAtRest(double stretch, int elements) {
-  model::SceneDescription sc;
-  sc.file = "(test)";
-  sc.dimension = 2;
-  for (int k = 0; k < 2; ++k) {
-    model::PulleyDesc p;
-    p.name = k == 0 ? "driver" : "driven";
-    p.center = {k * kD, 0.0, 0.0};
-    p.radius = kR;
-    sc.pulleys.push_back(p);
-  }
-  Section s;
-  s.E = 1e9;
-  s.A = kEA / s.E;
-  s.I = 1e-12;
-  s.rho = 1000.0;
-  model::BodyDesc belt = straightBody("belt", 2, elements, {0, 0, 0}, {1, 0, 0}, s);
-  belt.geometry.kind = model::GeometryKind::Wrap;
-  belt.geometry.closed = true;
-  for (const model::PulleyDesc& p : sc.pulleys) {
-    model::WrapTurn w;
-    w.center = p.center;
-    w.radius = p.radius;
-    w.sense = 1;  // counterclockwise around both
-    belt.geometry.wrap.push_back(w);
-  }
-  belt.initialStretch = stretch;
-  sc.bodies.push_back(belt);
-  // x held at node 0, the middle of the lower span (a closed path starts there): the loop cannot
-  // slide round the pulleys (no friction at rest), and by symmetry the support takes no force
-  model::SupportDesc hold;
-  hold.at.body = "belt";
-  hold.at.node = 0;
-  hold.type = model::SupportType::Fixed;
-  hold.dofs = {0};
-  sc.supports.push_back(hold);
-  model::ContactDesc c;
-  c.body = "belt";
-  c.pulleys = {"driver", "driven"};
-  c.law.stiffness = kStiffness;
-  c.points = 4;
-  sc.contacts.push_back(c);
-  return sc;
+  BeltLoop spec;
+  spec.radius = kR;
+  spec.distance = kD;
+  spec.elements = elements;
+  spec.EA = kEA;
+  spec.stretch = stretch;
+  spec.stiffness = kStiffness;
+  return closedBelt(spec);
 }
 
 double tensionOfStretch(double lambda) { return kEA * 0.5 * (lambda * lambda - 1.0) * lambda; }

@@ -286,38 +286,64 @@ TEST(Capstan, SuddenlyLoadedRopeSettlesToTheCapstanTension) {
   EXPECT_NEAR(T1 / exact, 1.0, 2e-3);
 }
 
-// An Atwood machine over a frictionless fixed drum: 2 kg and 1 kg at the ends of a rope, gravity.
-// The rope slides; nothing dissipates but generalized-alpha at rho_inf = 1 (none): kinetic + strain
-// + potential energy minus the contact's work stays at its start to the scheme's error.
-TEST(Capstan, RopeSlidingOverAFrictionlessDrumConservesEnergy) {
-  const double pi = std::acos(-1.0);
-  Capstan c = capstan(pi, 0.0, 0.0, 0.05);
+// The Atwood machines below: 2 kg and 1 kg at the ends of the rope of the capstan scene, hanging
+// 1 m below the drum's centre, released at rest under gravity, generalized-alpha at rho_inf = 1
+// (no numerical dissipation), dt 0.5 ms, 0.3 s. A softer penalty (1e5 N/m^2): the contact's own
+// frequency sqrt(k / rho A) = 1000 rad/s stays resolved (omega dt = 0.5) without dissipation.
+// With x the 2 kg mass's drop the hanging spans differ by 2x, so (rope inextensible)
+//   M x'' = (m1 - m2) g + 2 rho A g x,   x' = (m1 - m2) / (2 rho A) k sinh(k t),  k = sqrt(2 rho A g / M),
+// with M = m1 + m2 + rho A L, plus J / rho^2 over a free pulley (rho: the rope's centerline radius).
+namespace {
+
+constexpr double kRhoA = 1000.0 * kEA / 1e9;
+
+double atwoodLength() { return 2.0 * 1.0 + kR * std::acos(-1.0); }
+
+model::SceneDescription atwood(double mu, double slipVelocity) {
+  Capstan c = capstan(std::acos(-1.0), mu, 0.0, 0.05);
   model::SceneDescription& sc = c.scene;
   sc.analysis = model::Analysis::Dynamic;
   sc.supports.clear();
   sc.loads.nodal.clear();
   sc.loads.gravity = {0, -9.81, 0};
-  const double length = 2.0 * 1.0 + kR * pi;  // spans of 1 m (below)
   model::PointMassDesc a, b;
   a.at = 0.0;
   a.mass = 2.0;
-  b.at = length;
+  b.at = atwoodLength();
   b.mass = 1.0;
   sc.bodies[0].pointMasses = {a, b};
   sc.bodies[0].geometry.start = {-kR, -1.0, 0};  // spans of 1 m: the rope slides 0.2 m in 0.3 s
   sc.bodies[0].geometry.end = {kR, -1.0, 0};
-  sc.bodies[0].elements = static_cast<int>(std::lround(length / 0.05));
-  // a softer penalty: the contact's own frequency sqrt(k / rho A) = 1000 rad/s stays resolved
-  // (omega dt = 0.5) where the scheme has no numerical dissipation
+  sc.bodies[0].elements = static_cast<int>(std::lround(atwoodLength() / 0.05));
   sc.contacts[0].law.stiffness = 1e5;
-  // pull the rope tight first: the rope is at rest on the drum, gravity acts from t = 0
-  const DynamicRun r = runDynamics(sc, 5e-4, 0.3, 1.0);
+  sc.contacts[0].law.slipVelocity = slipVelocity;
+  return sc;
+}
+
+double atwoodSpeed(double M, double t) {
+  const double k = std::sqrt(2.0 * kRhoA * 9.81 / M);
+  return 1.0 / (2.0 * kRhoA) * k * std::sinh(k * t);
+}
+
+// The largest |E - E0| of the run's energy balance.
+double energyDrift(const DynamicRun& r) {
+  double drift = 0.0;
+  for (const solvers::DynamicsStep& st : r.steps) drift = std::max(drift, std::abs(st.energy() - r.steps.front().energy()));
+  return drift;
+}
+
+}  // namespace
+
+// Over a frictionless fixed drum: the rope slides; nothing dissipates, so kinetic + strain +
+// potential energy minus the contact's work stays at its start to the scheme's error, and the rope
+// moves as the heavy-rope Atwood machine.
+TEST(Capstan, RopeSlidingOverAFrictionlessDrumConservesEnergy) {
+  const DynamicRun r = runDynamics(atwood(0.0, 1e-3), 5e-4, 0.3, 1.0);
   ASSERT_TRUE(r.failure.empty()) << r.failure;
-  double scale = 0.0, drift = 0.0;
-  for (const solvers::DynamicsStep& st : r.steps) {
+  double scale = 0.0;
+  for (const solvers::DynamicsStep& st : r.steps)
     scale = std::max({scale, st.kinetic, std::abs(st.potential), std::abs(st.loadWork)});
-    drift = std::max(drift, std::abs(st.energy() - r.steps.front().energy()));
-  }
+  const double drift = energyDrift(r);
   const solvers::DynamicsStep& last = r.steps.back();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -325,46 +351,23 @@ TEST(Capstan, RopeSlidingOverAFrictionlessDrumConservesEnergy) {
     std::printf("Atwood over a frictionless drum: T = %.4f J, P = %.4f J, contact work %.4f J, drift %.2e J of %.3f J\n",
                 last.kinetic, last.potential, last.loadWork, drift, scale);
   EXPECT_LT(drift, 1e-3 * scale);
-  // and it moves as the heavy-rope Atwood machine: with x the 2 kg mass's drop, the hanging spans
-  // differ by 2x, so M x'' = (m1 - m2) g + 2 rho A g x (M = m1 + m2 + rho A L, rope inextensible):
-  // x = (m1 - m2) / (2 rho A) (cosh(k t) - 1), k = sqrt(2 rho A g / M), T = M x'^2 / 2
-  const double rhoA = 1000.0 * kEA / 1e9, M = 3.0 + rhoA * length, k = std::sqrt(2.0 * rhoA * 9.81 / M);
-  const double xdot = 1.0 / (2.0 * rhoA) * k * std::sinh(k * last.time);
+  const double M = 3.0 + kRhoA * atwoodLength(), xdot = atwoodSpeed(M, last.time);
   EXPECT_NEAR(last.kinetic / (0.5 * M * xdot * xdot), 1.0, 1e-2);
 }
 
-// The same Atwood machine over a pulley free to turn (J = 0.5 kg m^2) with friction (mu = 0.5): the
-// rope grips it (the capstan allows T1/T2 up to e^{mu pi} = 4.8, the pulley's inertia needs far
-// less), so the pulley turns with the rope, omega = x' / rho, and adds J / rho^2 to the moving mass:
-// M x'' = (m1 - m2) g + 2 rho A g x with M = m1 + m2 + rho A L + J / rho^2 (rho: the rope's
-// centerline radius on the pulley). Regularized friction grips by creeping, |s| < v_s: omega lags
-// x' / rho by O(v_s) (measured 5.4e-3, 1.9e-3, 7.5e-4 at v_s = 0.03, 0.01, 0.003 m/s). At v_s =
-// 1e-3 m/s (dt 0.5 ms, rho_inf 1) Newton stalls: it converges linearly at about 0.9 per iteration
-// and gives up after step 49 (docs/contact.md). Energy: the pulley's kinetic energy is in T, the
-// friction's creep work in the contact's.
+// Over a pulley free to turn (J = 0.5 kg m^2) with friction (mu = 0.5): the rope grips it (the
+// capstan allows T1/T2 up to e^{mu pi} = 4.8, the pulley's inertia needs far less), so the pulley
+// turns with the rope, omega = x' / rho, and adds J / rho^2 to the moving mass. Regularized
+// friction grips by creeping, |s| < v_s: omega lags x' / rho by O(v_s) (measured 5.4e-3, 1.9e-3,
+// 7.5e-4 at v_s = 0.03, 0.01, 0.003 m/s). At v_s = 1e-3 m/s (dt 0.5 ms, rho_inf 1) Newton stalls:
+// it converges linearly at about 0.9 per iteration and gives up after step 49 (docs/contact.md).
+// Energy: the pulley's kinetic energy is in T, the friction's creep work in the contact's.
 TEST(Capstan, RopeTurnsAFreePulleyAsTheAtwoodMachineWithThePulleysInertia) {
-  const double pi = std::acos(-1.0), J = 0.5;
+  const double J = 0.5;
   std::vector<double> lag;
   for (double vs : {0.03, 0.01, 0.003}) {
-    Capstan c = capstan(pi, 0.5, 0.0, 0.05);
-    model::SceneDescription& sc = c.scene;
-    sc.analysis = model::Analysis::Dynamic;
-    sc.supports.clear();
-    sc.loads.nodal.clear();
-    sc.loads.gravity = {0, -9.81, 0};
+    model::SceneDescription sc = atwood(0.5, vs);
     sc.pulleys[0].inertia = J;
-    const double length = 2.0 * 1.0 + kR * pi;
-    model::PointMassDesc a, b;
-    a.at = 0.0;
-    a.mass = 2.0;
-    b.at = length;
-    b.mass = 1.0;
-    sc.bodies[0].pointMasses = {a, b};
-    sc.bodies[0].geometry.start = {-kR, -1.0, 0};
-    sc.bodies[0].geometry.end = {kR, -1.0, 0};
-    sc.bodies[0].elements = static_cast<int>(std::lround(length / 0.05));
-    sc.contacts[0].law.stiffness = 1e5;
-    sc.contacts[0].law.slipVelocity = vs;
     const DynamicRun r = runDynamics(sc, 5e-4, 0.3, 1.0);
     ASSERT_TRUE(r.failure.empty()) << r.failure;
     solvers::Problem p(PETSC_COMM_WORLD, sc);
@@ -372,15 +375,12 @@ TEST(Capstan, RopeTurnsAFreePulleyAsTheAtwoodMachineWithThePulleysInertia) {
     ASSERT_GE(blk, 0);
     const double omega = r.v[2 * blk];
     const solvers::DynamicsStep& last = r.steps.back();
-    double drift = 0.0, scale = 0.0;
-    for (const solvers::DynamicsStep& st : r.steps) {
-      scale = std::max({scale, st.kinetic, std::abs(st.potential)});
-      drift = std::max(drift, std::abs(st.energy() - r.steps.front().energy()));
-    }
+    double scale = 0.0;
+    for (const solvers::DynamicsStep& st : r.steps) scale = std::max({scale, st.kinetic, std::abs(st.potential)});
+    const double drift = energyDrift(r);
     // the rope sits on the pulley at rho = R - T / (R k) (T about 13 N: 2.6e-4 m)
-    const double rhoA = 1000.0 * kEA / 1e9, rho = kR - 13.0 / (kR * 1e5);
-    const double M = 3.0 + rhoA * length + J / (rho * rho), k = std::sqrt(2.0 * rhoA * 9.81 / M);
-    const double xdot = 1.0 / (2.0 * rhoA) * k * std::sinh(k * last.time);
+    const double rho = kR - 13.0 / (kR * 1e5);
+    const double M = 3.0 + kRhoA * atwoodLength() + J / (rho * rho), xdot = atwoodSpeed(M, last.time);
     lag.push_back(1.0 - omega / (xdot / rho));
     int rank;
     MPI_Comm_rank(PETSC_COMM_WORLD, &rank);

@@ -124,8 +124,9 @@ public:
   PetscReal coordinateNorm() const;
   // Strain energy (all ranks get the sum).
   PetscErrorCode strainEnergy(Vec X, PetscReal* U);
-  // The belt-pulley contact points this rank assembles (Model::contacts(); V may be null: at rest;
-  // statics use t = 0): per body, element, pulley and Gauss point, what the law found there.
+  // The belt-pulley contact points this rank assembles near a pulley (Model::contacts(); V may be
+  // null: at rest; statics use t = 0): per body, element, pulley and Gauss point, what the law
+  // found there.
   struct ContactPointOut {
     int body, element, pulley, point;
     double r[2];  // position

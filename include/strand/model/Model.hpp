@@ -210,6 +210,7 @@ private:
   void addInitialVelocities(Build& b);
   void addJointEquations(Build& b);
   void addCouplings();
+  void addPulleyBlocks(Build& b);
   void addContacts(const SceneDescription& scene);
 
   int _dim = 3, _numBlocks = 0;
