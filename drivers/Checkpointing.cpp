@@ -69,6 +69,10 @@ void writeDynamicsCheckpoint(MPI_Comm comm, const model::SceneDescription& scene
   for (const auto& [name, v] : vecs) PetscCallAbort(comm, problem.assembler().toModelOrder(v, c.vectors[name]));
   // ABM4's history: f_k = (u', v') per entry; fixed-step BDF's: y_k = (u, v); each half in model numbering
   if (s.newtonStart >= 0) c.scalars["newton_start"] = s.newtonStart;  // generalized-alpha's Newton start
+  if (problem.assembler().hasContactHistory()) {  // the bristle law's deflections: (body, element, pulley, point, z)
+    c.scalars["contact_time"] = s.contactTime;
+    c.vectors["contact_history"] = s.contactHistory;
+  }
   c.scalars["history_count"] = s.historyCount;
   c.scalars["history_step"] = s.historyStep;
   if (!s.historyTimes.empty()) {  // fixed-step BDF: states y_k (not rates) at these times
@@ -101,7 +105,11 @@ bool wholeIn(double v, double lo, double hi) { return v >= lo && v <= hi && v ==
 // (issue 32 items 1, 2, 5: a NaN dt, a negative time or a step of 1e300 were accepted).
 io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& scene, const model::Model& model,
                                const std::string& path) {
-  io::CheckpointData data = io::readCheckpoint(comm, path, static_cast<size_t>(model.numDofs()));
+  size_t contactSlots = 0;  // the bristle law's history: 5 numbers per point at most
+  for (const model::PulleyContactSet& c : model.contacts())
+    contactSlots += static_cast<size_t>(model.bodies()[c.body].elements) * c.pulleys.size() * c.points;
+  io::CheckpointData data =
+      io::readCheckpoint(comm, path, std::max(static_cast<size_t>(model.numDofs()), 5 * contactSlots));
   const auto& sc = data.scalars;
   auto fail = [&](const std::string& why) { throw InputError(path + ": -restart: " + why); };
   for (const auto& [key, value] : sc)  // the energy sums, times and counters alike
@@ -244,6 +252,21 @@ int resumeDynamics(MPI_Comm comm, const io::CheckpointData& data, const std::str
     }
     VecDestroy(&hu);
     VecDestroy(&hv);
+  }
+  if (problem.assembler().hasContactHistory()) {  // rank 0 read it: every rank takes its own points
+    if (!sc.count("contact_time")) throw InputError(path + ": -restart: the checkpoint has no bristle friction history");
+    s.contactTime = sc.at("contact_time");
+    const auto it = data.vectors.find("contact_history");
+    int n = rank == 0 && it != data.vectors.end() ? static_cast<int>(it->second.size()) : 0;
+    MPI_Bcast(&n, 1, MPI_INT, 0, comm);
+    if (n % 5 != 0) throw InputError(path + ": -restart: /contact_history holds " + std::to_string(n) + " numbers, not 5 per point");
+    s.contactHistory.assign(static_cast<size_t>(n), 0.0);
+    if (rank == 0 && n > 0) s.contactHistory = it->second;
+    MPI_Bcast(s.contactHistory.data(), n, MPI_DOUBLE, 0, comm);
+    for (int i = 0; i < n; ++i)
+      if (!std::isfinite(s.contactHistory[i]) || (i % 5 < 4 && !wholeIn(s.contactHistory[i], 0.0, 1e9)))
+        throw InputError(path + ": -restart: /contact_history[" + std::to_string(i) + "] = " +
+                         fmt("%g", s.contactHistory[i]) + " is not " + (i % 5 < 4 ? "an index" : "a finite deflection"));
   }
   PetscCallAbort(comm, dyn.resumeFrom(s));
   VecDestroy(&A);

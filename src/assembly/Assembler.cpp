@@ -625,6 +625,45 @@ PetscErrorCode Assembler::pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<dou
   PetscFunctionReturn(0);
 }
 
+bool Assembler::hasContactHistory() const { return _contacts->hasHistory(); }
+
+PetscErrorCode Assembler::commitContact(Vec X, Vec V, PetscReal t) {
+  PetscFunctionBeginUser;
+  if (!_contacts->hasHistory()) PetscFunctionReturn(0);
+  LocalRead x, v;
+  PetscCall(beginLocal(X, _xWork, &x));
+  if (V) PetscCall(beginLocal(V, _vWork, &v));
+  _contacts->commit(x.a, V ? v.a : nullptr, t);
+  PetscCall(endLocal(&x));
+  if (V) PetscCall(endLocal(&v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::contactHistory(std::vector<double>& packed, double* tn) const {
+  PetscFunctionBeginUser;
+  std::vector<double> mine;
+  for (const PulleyContacts::HistoryEntry& e : _contacts->history())
+    mine.insert(mine.end(), {double(e.body), double(e.element), double(e.pulley), double(e.point), e.z});
+  int size, count = static_cast<int>(mine.size());
+  PetscCallMPI(MPI_Comm_size(_dofs.comm(), &size));
+  std::vector<int> counts(size), offsets(size, 0);
+  PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, _dofs.comm()));
+  for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  packed.assign(static_cast<size_t>(offsets[size - 1] + counts[size - 1]), 0.0);
+  PetscCallMPI(MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, packed.data(), counts.data(), offsets.data(),
+                              MPI_DOUBLE, _dofs.comm()));
+  *tn = _contacts->committedTime();
+  PetscFunctionReturn(0);
+}
+
+void Assembler::restoreContactHistory(const std::vector<double>& packed, double tn) {
+  std::vector<PulleyContacts::HistoryEntry> entries;
+  for (size_t i = 0; i + 4 < packed.size(); i += 5)
+    entries.push_back({static_cast<int>(packed[i]), static_cast<int>(packed[i + 1]), static_cast<int>(packed[i + 2]),
+                       static_cast<int>(packed[i + 3]), packed[i + 4]});
+  _contacts->restore(entries, tn);
+}
+
 PetscErrorCode Assembler::gatherToRoot(Vec X, std::vector<double>& out) {
   PetscFunctionBeginUser;
   PetscCall(toModelOrder(X, out));

@@ -83,6 +83,9 @@ PulleyContacts::PulleyContacts(const model::Model& model, const model::DofMap& d
         b.weight.push_back(rule.w[g] * body.elementLength);
       }
       b.reach = 2.0 * body.elementLength;
+      b.history = _z.size();
+      _z.resize(_z.size() + b.elements.size() * set.pulleys.size() * b.weight.size(), 0.0);
+      _hasHistory |= set.law.friction == contact::FrictionLaw::Bristle;
       if (!b.elements.empty()) _bodies.push_back(std::move(b));
     }
   }
@@ -143,23 +146,31 @@ void PulleyContacts::forEachNearPoint(const double* x, const double* v,
       bool any = false;
       for (int p : set.pulleys) any |= (near[p] = mayTouch(b, k, x, pulleys[p], set.law));
       if (!any) continue;
-      for (int g = 0; g < static_cast<int>(b.weight.size()); ++g) {
+      const size_t np = set.pulleys.size(), ng = b.weight.size();
+      for (int g = 0; g < static_cast<int>(ng); ++g) {
         double rg[2], vg[2];
         pointState(b, k, g, x, v, rg, vg);
-        for (int p : set.pulleys)
-          if (near[p]) f(b, set, k, g, p, rg, vg);
+        for (size_t i = 0; i < np; ++i)
+          if (near[set.pulleys[i]]) f(b, set, k, g, set.pulleys[i], b.history + (k * np + i) * ng + g, rg, vg);
       }
     }
   }
+}
+
+const contact::BristleHistory* PulleyContacts::historyAt(size_t h, double t, contact::BristleHistory* buf) const {
+  if (!_hasHistory) return nullptr;
+  *buf = {_z[h], t - _tn};
+  return buf;
 }
 
 void PulleyContacts::residual(const double* x, const double* v, double t, double* r, double scale) const {
   if (_bodies.empty()) return;
   const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
   forEachNearPoint(x, v, pulleys, [&](const LocalBody& b, const model::PulleyContactSet& set, int k, int g, int p,
-                                      const double* rg, const double* vg) {
+                                      size_t h, const double* rg, const double* vg) {
     double f[2];
-    if (!contact::pointForce(set.law, pulleys[p], rg, vg, f)) return;
+    contact::BristleHistory buf;
+    if (!contact::pointForce(set.law, pulleys[p], rg, vg, f, historyAt(h, t, &buf))) return;
     const PetscInt* lb = b.group->localBlocksOf(b.elements[k]);
     const double* w = &b.w[static_cast<size_t>(g) * b.stride];
     for (int a = 0; a < b.stride; ++a)
@@ -182,6 +193,7 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
   for (const LocalBody& b : _bodies) {
     const model::PulleyContactSet& set = _model.contacts()[b.set];
     const int n = b.stride * 2;
+    const size_t np = set.pulleys.size(), ng = b.weight.size();
     for (int k = 0; k < static_cast<int>(b.elements.size()); ++k) {
       bool touching = false, nearAny = false;
       for (int p : set.pulleys) nearAny |= (near[p] = mayTouch(b, k, x, pulleys[p], set.law));
@@ -196,9 +208,12 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
         pointState(b, k, g, x, v, rg, vg);
         const double* w = &b.w[static_cast<size_t>(g) * b.stride];
         const double W = b.weight[g];
-        for (int p : set.pulleys) {
+        for (size_t li = 0; li < np; ++li) {
+          const int p = set.pulleys[li];
           double f[2], dr[4], dv[4], dw[2];
-          if (!near[p] || !contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw).closed) continue;
+          contact::BristleHistory buf;
+          const contact::BristleHistory* h = historyAt(b.history + (k * np + li) * ng + g, t, &buf);
+          if (!near[p] || !contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw, h).closed) continue;
           touching = true;
           for (int a = 0; a < b.stride; ++a)
             for (int c = 0; c < b.stride; ++c) {
@@ -280,9 +295,10 @@ PetscErrorCode PulleyContacts::mass(Mat M) const {
 void PulleyContacts::pulleyLoads(const double* x, const double* v, double t, double* load) const {
   const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
   forEachNearPoint(x, v, pulleys, [&](const LocalBody& b, const model::PulleyContactSet& set, int, int g, int p,
-                                      const double* rg, const double* vg) {
+                                      size_t h, const double* rg, const double* vg) {
     double f[2];
-    if (!contact::pointForce(set.law, pulleys[p], rg, vg, f)) return;
+    contact::BristleHistory buf;
+    if (!contact::pointForce(set.law, pulleys[p], rg, vg, f, historyAt(h, t, &buf))) return;
     const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
     load[4 * p] -= b.weight[g] * f[0];
     load[4 * p + 1] -= b.weight[g] * f[1];
@@ -295,11 +311,65 @@ void PulleyContacts::points(const double* x, const double* v, double t,
                             std::vector<Assembler::ContactPointOut>& out) const {
   const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
   forEachNearPoint(x, v, pulleys, [&](const LocalBody& b, const model::PulleyContactSet& set, int k, int g, int p,
-                                      const double* rg, const double* vg) {
+                                      size_t h, const double* rg, const double* vg) {
     double f[2], dr[4], dv[4], dw[2];
+    contact::BristleHistory buf;
     out.push_back({set.body, b.index[k], p, g, {rg[0], rg[1]},
-                   contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw)});
+                   contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw, historyAt(h, t, &buf))});
   });
+}
+
+void PulleyContacts::commit(const double* x, const double* v, double t) {
+  if (_hasHistory) {
+    const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+    std::vector<double> z(_z.size(), 0.0);  // off contact: relaxed
+    forEachNearPoint(x, v, pulleys, [&](const LocalBody&, const model::PulleyContactSet& set, int, int, int p,
+                                        size_t h, const double* rg, const double* vg) {
+      if (set.law.friction != contact::FrictionLaw::Bristle) return;
+      double f[2], dr[4], dv[4], dw[2];
+      contact::BristleHistory buf;
+      const contact::ContactPoint c =
+          contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw, historyAt(h, t, &buf));
+      if (c.touching) z[h] = -c.friction / set.law.tangentialStiffness;
+    });
+    _z.swap(z);
+  }
+  _tn = t;
+}
+
+std::vector<PulleyContacts::HistoryEntry> PulleyContacts::history() const {
+  std::vector<HistoryEntry> out;
+  for (const LocalBody& b : _bodies) {
+    const model::PulleyContactSet& set = _model.contacts()[b.set];
+    const size_t np = set.pulleys.size(), ng = b.weight.size();
+    for (size_t k = 0; k < b.elements.size(); ++k)
+      for (size_t i = 0; i < np; ++i)
+        for (size_t g = 0; g < ng; ++g) {
+          const double z = _z[b.history + (k * np + i) * ng + g];
+          if (z != 0.0) out.push_back({set.body, b.index[k], set.pulleys[i], static_cast<int>(g), z});
+        }
+  }
+  return out;
+}
+
+void PulleyContacts::restore(const std::vector<HistoryEntry>& entries, double tn) {
+  std::fill(_z.begin(), _z.end(), 0.0);
+  _tn = tn;
+  for (const LocalBody& b : _bodies) {
+    const model::PulleyContactSet& set = _model.contacts()[b.set];
+    const size_t np = set.pulleys.size(), ng = b.weight.size();
+    std::vector<int> at;  // body element index -> k
+    for (size_t k = 0; k < b.elements.size(); ++k) {
+      if (b.index[k] >= static_cast<int>(at.size())) at.resize(b.index[k] + 1, -1);
+      at[b.index[k]] = static_cast<int>(k);
+    }
+    for (const HistoryEntry& e : entries) {
+      if (e.body != set.body || e.element >= static_cast<int>(at.size()) || at[e.element] < 0) continue;
+      const auto i = std::find(set.pulleys.begin(), set.pulleys.end(), e.pulley) - set.pulleys.begin();
+      if (i == static_cast<long>(np) || e.point >= static_cast<int>(ng)) continue;
+      _z[b.history + (at[e.element] * np + i) * ng + e.point] = e.z;
+    }
+  }
 }
 
 }  // namespace strand::assembly

@@ -50,6 +50,21 @@ public:
   // out += what the law finds at the Gauss points of this rank's elements near a pulley (mayTouch).
   void points(const double* x, const double* v, double t, std::vector<Assembler::ContactPointOut>& out) const;
 
+  // The bristle law's history (contact::BristleHistory): one deflection per local element, listed
+  // pulley and Gauss point, and the time of the last accepted step. commit() takes the accepted
+  // state at time t: each point's deflection becomes -f_t / k_t (0 off contact) and t the new t_n.
+  bool hasHistory() const { return _hasHistory; }
+  void commit(const double* x, const double* v, double t);
+  // The history as (body, element, pulley, point) -> z and t_n, for checkpoints; restore() puts
+  // back what history() wrote (on any rank count: each rank takes its own elements' points).
+  struct HistoryEntry {
+    int body, element, pulley, point;
+    double z;
+  };
+  std::vector<HistoryEntry> history() const;
+  double committedTime() const { return _tn; }
+  void restore(const std::vector<HistoryEntry>& entries, double tn);
+
 private:
   struct LocalBody {
     int set = 0;                  // index into Model::contacts()
@@ -60,6 +75,7 @@ private:
     std::vector<double> w;        // points x stride interpolation weights
     std::vector<double> weight;   // per point: Gauss weight times element length
     double reach = 0.0;           // 2 L_e
+    size_t history = 0;           // its first slot in _z: (k * pulleys + listed pulley) * points + g
   };
   // Whether local element k may touch pulley p: its first node lies within R + offset + 2 L_e of
   // the centre (every point of an element stretched less than 100 % lies within 2 L_e of its first
@@ -67,8 +83,8 @@ private:
   // Gauss point.
   bool mayTouch(const LocalBody& b, int k, const double* x, const contact::PulleyState& p,
                 const contact::ContactLaw& law) const;
-  // f(body, set, k, g, p, r, v) at every Gauss point g of every local element k near pulley p: the
-  // loop of the residual, the pulley loads and the output.
+  // f(body, set, k, g, p, h, r, v) at every Gauss point g of every local element k near pulley p,
+  // h its bristle history slot: the loop of the residual, the pulley loads and the output.
   template <class F>
   void forEachNearPoint(const double* x, const double* v, const std::vector<contact::PulleyState>& pulleys,
                         F&& f) const;
@@ -83,6 +99,11 @@ private:
   std::vector<PetscInt> _pulleyLocal;   // per pulley: ghosted-local block of a free pulley, or -1
   std::vector<PetscInt> _pulleyGlobal;  // per pulley: global block of a free pulley, or -1
   std::vector<int> _ownedFree;          // free pulleys whose block this rank owns
+  bool _hasHistory = false;             // some contact uses the bristle law
+  std::vector<double> _z;               // committed deflections, per slot
+  double _tn = 0.0;                     // the time they belong to
+  // Slot h's history at time t (null without the bristle law).
+  const contact::BristleHistory* historyAt(size_t h, double t, contact::BristleHistory* buf) const;
 };
 
 }  // namespace strand::assembly

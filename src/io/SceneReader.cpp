@@ -383,9 +383,9 @@ model::TimeFunction readTimeFunction(const Field& f) {
     f.expectMap({"function", "rate"});
     tf.kind = K::Linear;
     tf.rate = f.child("rate").number();
-  } else if (kind == "ramp") {
+  } else if (kind == "ramp" || kind == "cosine_ramp") {
     f.expectMap({"function", "start", "end", "value"});
-    tf.kind = K::Ramp;
+    tf.kind = kind == "ramp" ? K::Ramp : K::CosineRamp;
     tf.start = f.child("start").present() ? requireNonNegative(f.child("start")) : 0.0;
     tf.end = f.child("end").number();
     if (!(tf.end > tf.start)) f.child("end").fail("must be later than start (" + fmt(tf.start) + " s)");
@@ -413,7 +413,7 @@ model::TimeFunction readTimeFunction(const Field& f) {
     for (size_t i = 1; i < tf.times.size(); ++i)
       if (!(tf.times[i] > tf.times[i - 1])) f.child("time").fail("times must increase (entry " + std::to_string(i) + ")");
   } else {
-    f.child("function").fail("unknown time function '" + printable(kind) + "'; allowed: constant, linear, ramp, sine, spin_up, table");
+    f.child("function").fail("unknown time function '" + printable(kind) + "'; allowed: constant, linear, ramp, cosine_ramp, sine, spin_up, table");
   }
   return tf;
 }
@@ -1465,7 +1465,8 @@ private:
     }
   }
 
-  // contact: [{body, pulleys, stiffness, damping, belt_height, points, friction: {law, mu, slip_velocity}}].
+  // contact: [{body, pulleys, stiffness, damping, belt_height, points,
+  //            friction: {law: none | coulomb (mu, slip_velocity) | bristle (mu, stiffness)}}].
   void readContacts(const Field& f) {
     if (scene_.pulleys.empty()) f.fail("contact needs pulleys: the scene has none (key 'pulleys')");
     for (const Field& item : f.items()) {
@@ -1495,17 +1496,29 @@ private:
       if (const Field h = item.child("belt_height"); h.present()) c.law.offset = 0.5 * requireNonNegative(h);
       if (const Field n = item.child("points"); n.present()) c.points = requireIntInRange(n, 1, 8);
       if (const Field fr = item.child("friction"); fr.present()) {
-        fr.expectMap({"law", "mu", "slip_velocity"});
+        fr.expectMap({"law", "mu", "slip_velocity", "stiffness"});
         const std::string law = fr.child("law").text();
+        auto unused = [&](std::initializer_list<const char*> keys) {
+          for (const char* key : keys)
+            if (const Field k = fr.child(key); k.present()) k.fail("not used by law: " + law);
+        };
         if (law == "none") {
-          for (const char* key : {"mu", "slip_velocity"})
-            if (const Field k = fr.child(key); k.present()) k.fail("not used by law: none");
+          unused({"mu", "slip_velocity", "stiffness"});
         } else if (law == "coulomb") {
+          unused({"stiffness"});
           c.law.friction = contact::FrictionLaw::RegularizedCoulomb;
           c.law.mu = requireNonNegative(fr.child("mu"));
           if (const Field v = fr.child("slip_velocity"); v.present()) c.law.slipVelocity = requirePositive(v);
+        } else if (law == "bristle") {
+          unused({"slip_velocity"});
+          if (scene_.analysis != model::Analysis::Dynamic)
+            fr.child("law").fail("the bristle law follows each point's slip from step to step: it needs a dynamic analysis");
+          c.law.friction = contact::FrictionLaw::Bristle;
+          c.law.mu = requireNonNegative(fr.child("mu"));
+          c.law.tangentialStiffness = c.law.stiffness;  // default: the normal penalty's
+          if (const Field k = fr.child("stiffness"); k.present()) c.law.tangentialStiffness = requirePositive(k);
         } else {
-          fr.child("law").fail("unknown friction law '" + printable(law) + "'; allowed: none, coulomb");
+          fr.child("law").fail("unknown friction law '" + printable(law) + "'; allowed: none, coulomb, bristle");
         }
       }
       scene_.contacts.push_back(std::move(c));

@@ -19,6 +19,12 @@ TimeValue TimeFunction::at(double t) const {
       const double slope = value / (end - start);
       return {slope * (t - start), slope, 0.0};
     }
+    case Kind::CosineRamp: {
+      if (t <= start) return {0.0, 0.0, 0.0};
+      if (t >= end) return {value, 0.0, 0.0};
+      const double k = kPi / (end - start), x = k * (t - start);
+      return {0.5 * value * (1.0 - std::cos(x)), 0.5 * value * k * std::sin(x), 0.5 * value * k * k * std::cos(x)};
+    }
     case Kind::Sine: {
       const double w = 2.0 * kPi * frequency, s = std::sin(w * t + phase), c = std::cos(w * t + phase);
       return {amplitude * s, amplitude * w * c, -amplitude * w * w * s};
@@ -46,6 +52,7 @@ std::string TimeFunction::name() const {
     case Kind::Constant: return "constant";
     case Kind::Linear: return "linear";
     case Kind::Ramp: return "ramp";
+    case Kind::CosineRamp: return "cosine_ramp";
     case Kind::Sine: return "sine";
     case Kind::SpinUp: return "spin_up";
     case Kind::Table: return "table";

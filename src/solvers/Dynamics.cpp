@@ -520,6 +520,7 @@ PetscErrorCode Dynamics::monitor(TS ts, PetscInt step, PetscReal t, Vec X, void*
 
 PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) {
   PetscFunctionBeginUser;
+  PetscCall(_asm.commitContact(X, V, t));  // the bristle law's deflections of the accepted state
   DynamicsStep s;
   s.step = static_cast<int>(step);
   s.time = t;

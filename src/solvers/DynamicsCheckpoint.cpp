@@ -23,6 +23,7 @@ PetscErrorCode Dynamics::saveState(ResumeState* s) {
   s->lastSupportPower = _lastSupportPower;
   s->lastLoadPower = _lastLoadPower;
   s->A = s->a = nullptr;
+  PetscCall(_asm.contactHistory(s->contactHistory, &s->contactTime));
   PetscBool ours = PETSC_FALSE;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));
   s->newtonStart = -1;
@@ -80,6 +81,7 @@ PetscErrorCode Dynamics::resumeFrom(const ResumeState& s) {
     PetscCall(VecCopy(s.A, _resume.A));
     PetscCall(VecCopy(s.a, _resume.a));
   }
+  _asm.restoreContactHistory(s.contactHistory, s.contactTime);
   _resuming = true;
   PetscFunctionReturn(0);
 }

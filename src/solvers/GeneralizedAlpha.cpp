@@ -31,6 +31,9 @@ struct AlphaData {
   int predictor = 2;           // X1 = X0 (0), + h V0 (1), + h^2/2 A0 (2)
   Vec offset = nullptr;        // X0 + h V0 + h^2/2 A0 minus the predictor used (when not that one)
   bool checkPredictor = true;  // at the first step of a start: weigh the predictor against X0
+  int preferred = -1;          // after a fall-back to X0: the predictor to try again (-1: none)
+  int recheckIn = 0;           // ... in this many steps
+  int recheckEvery = 16;       // ... doubled after each Newton failure from it (at most 1024)
   bool predictorCheck = true;  // -ts_strand_alpha_predictor_check
   PetscReal coordinateNorm = 0.0;  // |q0| when X holds displacements from q0 (round-off scale)
   RetryFn retry = nullptr;
@@ -145,9 +148,19 @@ PetscErrorCode predictorOffset(TS ts, Vec X1, PetscReal h) {
 // EI 6 (h^2 g/2) / l_e^3 that grows as N^3 (10,000-element steel cantilever: 7.8e9 N against
 // 0.12 N at X0, and Newton diverges from it, docs/performance.md). That roughness stays in V and A
 // (the scheme damps it only like rho_inf^n), so the next steps' predictors kink alike: the choice
-// holds for the run, as after a failed step. On a smooth start the predictor's residual is
-// O(h) of X0's (pendulum released under gravity), and when h V0 + h^2/2 A0 is at round-off
-// both are X0.
+// holds while the transient lasts: X0 is kept, and the two starts are weighed again every
+// recheckEvery steps (two residuals), as after a failed step. A belt running over pulleys needs
+// the predictor back once its start-up ringing has decayed: from X0 every sticking point starts
+// one step's travel off its pulley's (2.4e-4 m at 1.2 m/s and h = 2e-4 s), and Newton took
+// 14 iterations per step against 4 from the velocity predictor. On a smooth start the predictor's
+// residual is O(h) of X0's (pendulum released under gravity), and when h V0 + h^2/2 A0 is at
+// round-off both are X0.
+void fallBack(AlphaData* d) {  // start from X0 for a while (choosePredictor)
+  d->preferred = d->predictor;
+  d->predictor = 0;
+  d->recheckIn = d->recheckEvery;
+}
+
 PetscErrorCode choosePredictor(TS ts, Vec X1, PetscReal h) {
   AlphaData* d = dataOf(ts);
   Vec F;
@@ -185,7 +198,7 @@ PetscErrorCode choosePredictor(TS ts, Vec X1, PetscReal h) {
   PetscCall(PetscInfo(ts, "first step: residual %g from the %s predictor, %g from X0: from %s for this run\n",
                       static_cast<double>(predicted), kPredictorNames[d->predictor],
                       static_cast<double>(still), still < predicted ? "X0" : "the predictor"));
-  if (still < predicted) d->predictor = 0;
+  if (still < predicted) fallBack(d);
   PetscFunctionReturn(0);
 }
 
@@ -214,6 +227,10 @@ PetscErrorCode step(TS ts) {
     d->shiftV = d->gamma / (d->beta * h);
     d->shiftA = (1.0 - d->alphaM) / ((1.0 - d->alphaF) * d->beta * h * h);
     Vec X1 = ts->vec_sol;
+    if (fresh && d->predictor == 0 && d->preferred > 0 && --d->recheckIn <= 0) {  // X0 since a fall-back
+      d->predictor = d->preferred;
+      d->checkPredictor = true;
+    }
     if (d->checkPredictor && fresh) PetscCall(choosePredictor(ts, X1, h));
     for (PetscBool again = PETSC_TRUE; again;) {
       again = PETSC_FALSE;
@@ -232,14 +249,16 @@ PetscErrorCode step(TS ts) {
       SNESConvergedReason reason;
       PetscCall(SNESGetConvergedReason(ts->snes, &reason));
       if (reason >= 0) break;
-      // Newton failed: once more from X0 with full Newton, and keep the displacement predictor
-      // for the rest of the run (a suddenly loaded fine mesh: the extrapolated acceleration
-      // kinks the elements at a support and starts Newton outside its basin, docs/performance.md)
+      // Newton failed: once more from X0 with full Newton, and keep X0 as the start for a while
+      // (a suddenly loaded fine mesh: the extrapolated acceleration kinks the elements at a
+      // support and starts Newton outside its basin, docs/performance.md); the predictor is
+      // weighed again after recheckEvery steps, twice as many after each failure from it
       if (d->retry) PetscCall(d->retry(d->retryCtx, &again));
       if (d->predictor > 0) {
-        PetscCall(PetscInfo(ts, "Newton failed at t = %g from the %s predictor; from X0 from now on\n",
-                            static_cast<double>(ts->ptime + h), kPredictorNames[d->predictor]));
-        d->predictor = 0;
+        PetscCall(PetscInfo(ts, "Newton failed at t = %g from the %s predictor; from X0 for %d steps\n",
+                            static_cast<double>(ts->ptime + h), kPredictorNames[d->predictor], d->recheckEvery));
+        fallBack(d);
+        d->recheckEvery = std::min(2 * d->recheckEvery, 1024);
         again = PETSC_TRUE;
       }
       if (again) ts->reject++;
@@ -495,6 +514,7 @@ PetscErrorCode GeneralizedAlphaSetPredictor(TS ts, PetscInt which) {
              "predictor %d not in 0..2", static_cast<int>(which));
   dataOf(ts)->predictor = static_cast<int>(which);
   dataOf(ts)->checkPredictor = false;
+  dataOf(ts)->preferred = -1;
   PetscFunctionReturn(0);
 }
 

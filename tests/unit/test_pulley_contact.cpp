@@ -2,10 +2,11 @@
 //
 // requirement: the hand-derived tangents df/dr, df/dv equal the dual-number derivatives of the
 //   force, and df/domega its central difference, in every regime (frictionless, damped, sticking
-//   creep, sliding, a moving and turning pulley);
+//   creep, sliding, a moving and turning pulley, the bristle law sticking and slipping);
 // requirement: the law's kinematics: no force off the pulley; the normal force k |g| along the
 //   outward normal; no friction when the belt point moves with the pulley's material point;
-//   friction mu p against the slip once |s| >> v_s.
+//   friction mu p against the slip once |s| >> v_s; the bristle law holds a sticking point with
+//   f_t = -k_t z and no slip (true stick, no creep) and slides at mu p against the slip.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,6 +26,7 @@ struct Case {
   ContactLaw law;
   PulleyState pulley;
   double r[2], v[2];
+  contact::BristleHistory history = {};
 };
 
 ContactLaw law(double damping, FrictionLaw friction, double mu, double vs) {
@@ -35,6 +37,12 @@ ContactLaw law(double damping, FrictionLaw friction, double mu, double vs) {
   l.mu = mu;
   l.slipVelocity = vs;
   l.offset = 0.002;
+  return l;
+}
+
+ContactLaw bristle(double damping, double mu) {
+  ContactLaw l = law(damping, FrictionLaw::Bristle, mu, 1e-3);
+  l.tangentialStiffness = 1e6;
   return l;
 }
 
@@ -60,6 +68,10 @@ std::vector<Case> cases() {
       {"sliding", law(0.0, FrictionLaw::RegularizedCoulomb, 0.3, 1e-3), pulley(-5.0), {r[0], r[1]}, {0.1, 0.05}},
       {"moving pulley", law(10.0, FrictionLaw::RegularizedCoulomb, 0.4, 5e-2), pulley(1.5, 0.2, -0.3),
        {r[0], r[1]}, {0.25, -0.28}},
+      // p = 150 N/m, mu p = 75 N/m, k_t = 1e6 N/m^2: trial -k_t (z + dt s) = -30 (stick), -150 (slip)
+      {"bristle stick", bristle(20.0, 0.5), pulley(2.0), {r[0], r[1]},
+       {-2.0 * rho * std::sin(a) + 0.01 * -std::sin(a), 2.0 * rho * std::cos(a) + 0.01 * std::cos(a)}, {2e-5, 1e-3}},
+      {"bristle slip", bristle(20.0, 0.5), pulley(-1.0, 0.1, 0.0), {r[0], r[1]}, {0.3, 0.2}, {5e-5, 1e-3}},
   };
 }
 
@@ -71,9 +83,9 @@ TEST(PulleyContact, TangentsEqualDualNumberDerivatives) {
     Dl r[2] = {Dl::variable(c.r[0], 0), Dl::variable(c.r[1], 1)};
     Dl v[2] = {Dl::variable(c.v[0], 2), Dl::variable(c.v[1], 3)};
     Dl fd[2];
-    ASSERT_TRUE(contact::pointForce(c.law, c.pulley, r, v, fd)) << c.name;
+    ASSERT_TRUE(contact::pointForce(c.law, c.pulley, r, v, fd, &c.history)) << c.name;
     double f[2], dfdr[4], dfdv[4], dfdw[2];
-    const contact::ContactPoint pt = contact::pointTangent(c.law, c.pulley, c.r, c.v, f, dfdr, dfdv, dfdw);
+    const contact::ContactPoint pt = contact::pointTangent(c.law, c.pulley, c.r, c.v, f, dfdr, dfdv, dfdw, &c.history);
     ASSERT_TRUE(pt.touching) << c.name;
     double scale = 0.0;
     for (int i = 0; i < 2; ++i)
@@ -91,8 +103,8 @@ TEST(PulleyContact, TangentsEqualDualNumberDerivatives) {
     up.omega += h;
     down.omega -= h;
     double fu[2], fdn[2];
-    contact::pointForce(c.law, up, c.r, c.v, fu);
-    contact::pointForce(c.law, down, c.r, c.v, fdn);
+    contact::pointForce(c.law, up, c.r, c.v, fu, &c.history);
+    contact::pointForce(c.law, down, c.r, c.v, fdn, &c.history);
     for (int i = 0; i < 2; ++i) {
       const double central = (fu[i] - fdn[i]) / (2.0 * h);
       EXPECT_NEAR(dfdw[i], central, 1e-6 * (std::abs(central) + std::abs(f[i]) * 1e-3) + 1e-9) << c.name;
@@ -136,4 +148,35 @@ TEST(PulleyContact, FrictionFollowsTheSlipOfTheMaterialPoints) {
   EXPECT_NEAR(pt.slip, 0.1, 1e-14);
   EXPECT_NEAR(pt.friction, -0.4 * k, 1e-12 * k);
   EXPECT_NEAR(f[0] * t[0] + f[1] * t[1], -0.4 * k, 1e-9 * k);
+}
+
+TEST(PulleyContact, BristleSticksWithoutCreepAndSlidesAtMuP) {
+  ContactLaw l = law(0.0, FrictionLaw::Bristle, 0.5, 1e-3);
+  l.tangentialStiffness = 1e6;
+  const PulleyState p = pulley(2.0);
+  const double a = 0.3, rho = 0.1015;  // p = k 0.5e-3 = 150 N/m, mu p = 75 N/m
+  const double r[2] = {0.3 + rho * std::cos(a), -0.1 + rho * std::sin(a)};
+  const double t[2] = {-std::sin(a), std::cos(a)};
+  double withPulley[2], f[2], dr[4], dv[4], dw[2];
+  for (int i = 0; i < 2; ++i) withPulley[i] = 2.0 * rho * t[i];  // s = 0
+  // stuck with a deflection inside the cone: the force holds it, whatever the time since (no creep)
+  for (double dt : {0.0, 1e-3, 1.0}) {
+    const contact::BristleHistory h{-4e-5, dt};
+    const contact::ContactPoint pt = contact::pointTangent(l, p, r, withPulley, f, dr, dv, dw, &h);
+    EXPECT_TRUE(pt.sticking);
+    EXPECT_NEAR(pt.pressure, 150.0, 1e-9);
+    EXPECT_NEAR(pt.friction, 40.0, 1e-9);  // -k_t z
+  }
+  // slipping along +t: the deflection grows to the cone's edge and the force stays -mu p
+  double sliding[2];
+  for (int i = 0; i < 2; ++i) sliding[i] = withPulley[i] + 0.05 * t[i];
+  const contact::BristleHistory h{0.0, 1e-2};  // trial -k_t dt s = -500 beyond mu p = 75
+  const contact::ContactPoint pt = contact::pointTangent(l, p, r, sliding, f, dr, dv, dw, &h);
+  EXPECT_FALSE(pt.sticking);
+  EXPECT_NEAR(pt.slip, 0.05, 1e-12);
+  EXPECT_NEAR(pt.friction, -75.0, 1e-9);
+  EXPECT_NEAR(f[0] * t[0] + f[1] * t[1], -75.0, 1e-9);
+  // off the pulley: no force, whatever the history
+  const double off[2] = {0.3 + 0.2 * std::cos(a), -0.1 + 0.2 * std::sin(a)};
+  EXPECT_FALSE(contact::pointTangent(l, p, off, sliding, f, dr, dv, dw, &h).touching);
 }

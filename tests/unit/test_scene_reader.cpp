@@ -786,6 +786,22 @@ TEST(SceneReader, InitialVelocityTimedLoadsAndDtOut) {
       "scene.yaml");
   EXPECT_TRUE(ramp.loads.timed);
   EXPECT_EQ(ramp.loads.function.kind, model::TimeFunction::Kind::Ramp);
+  {  // the cosine ramp 25 (1 - cos(pi (t - 1) / 0.5)) / 2 of Pechstein & Gerstmayr's load torque, exact derivatives
+    const model::SceneDescription c = parseScene(
+        edit(dyn, "  nodal: [{body: cable, node: last, force: [0, -1]}]\n",
+             "  nodal: [{body: cable, node: last, force: [0, -1]}]\n  function: {function: cosine_ramp, value: 25, start: 1, end: 1.5}\n"),
+        "scene.yaml");
+    const model::TimeFunction& f = c.loads.function;
+    const double pi = std::acos(-1.0), h = 1e-6;
+    EXPECT_EQ(f.at(0.9).f, 0.0);
+    EXPECT_EQ(f.at(2.0).f, 25.0);
+    EXPECT_NEAR(f.at(1.25).f, 12.5, 1e-12);
+    for (double t : {1.1, 1.3, 1.45}) {
+      EXPECT_NEAR(f.at(t).f, 12.5 * (1.0 - std::cos(2.0 * pi * (t - 1.0))), 1e-12);
+      EXPECT_NEAR(f.at(t).df, (f.at(t + h).f - f.at(t - h).f) / (2 * h), 1e-6);
+      EXPECT_NEAR(f.at(t).ddf, (f.at(t + h).df - f.at(t - h).df) / (2 * h), 1e-4);
+    }
+  }
   EXPECT_TRUE(failsWith(edit(kBase2d, "  nodal: [{body: cable, node: last, force: [0, -1]}]\n",
                              "  nodal: [{body: cable, node: last, force: [0, -1]}]\n  function: 2\n"),
                         13, "loads.function", "time-dependent loads need analysis: dynamic"));
@@ -812,7 +828,7 @@ TEST(SceneReader, HubSupportAndTimeFunctions) {
       parseScene(withAngle("{function: table, time: [0, 1, 3], value: [0, 2, 2]}"), "s.yaml").supports[0].hub.angle;
   EXPECT_DOUBLE_EQ(table.at(0.5).f, 1.0);
   EXPECT_TRUE(failsWith(withAngle("{function: spline}"), 10, "supports[0].hub.angle.function",
-                        "unknown time function 'spline'; allowed: constant, linear, ramp, sine, spin_up, table"));
+                        "unknown time function 'spline'; allowed: constant, linear, ramp, cosine_ramp, sine, spin_up, table"));
   EXPECT_TRUE(failsWith(withAngle("{function: table, time: [0, 2, 1], value: [0, 1, 2]}"), 10,
                         "supports[0].hub.angle.time", "times must increase"));
   EXPECT_TRUE(failsWith(withAngle("{function: table, time: [0, 1], value: [0]}"), 10, "supports[0].hub.angle.value",
@@ -1361,7 +1377,11 @@ TEST(SceneReader, PulleysContactAndWrapPathsAreReadAndChecked) {
                         "no tangent line from start to around[0]"));
   EXPECT_TRUE(failsWith(head + wrap, 3, "pulleys", "pulleys act through contact"));
   EXPECT_TRUE(failsWith(head + wrap + edit(contact, "law: coulomb, mu: 0.4", "law: stribeck"), 12, "contact[0].friction.law",
-                        "unknown friction law 'stribeck'; allowed: none, coulomb"));
+                        "unknown friction law 'stribeck'; allowed: none, coulomb, bristle"));
+  EXPECT_TRUE(failsWith(head + wrap + edit(contact, "law: coulomb, mu: 0.4", "law: bristle, mu: 0.4"), 12,
+                        "contact[0].friction.law", "it needs a dynamic analysis"));
+  EXPECT_TRUE(failsWith(head + wrap + edit(contact, "law: coulomb, mu: 0.4", "law: coulomb, mu: 0.4, stiffness: 1e6"), 12,
+                        "contact[0].friction.stiffness", "not used by law: coulomb"));
   EXPECT_TRUE(failsWith(head + wrap + edit(contact, "stiffness: 1e7", "stiffness: 0"), 12, "contact[0].stiffness",
                         "must be positive"));
   EXPECT_TRUE(failsWith(head + wrap + edit(contact, "body: rope", "body: belt"), 12, "contact[0].body", "no body named 'belt'"));
@@ -1372,6 +1392,17 @@ TEST(SceneReader, PulleysContactAndWrapPathsAreReadAndChecked) {
   // a pulley free to turn: dynamics only; damping and torque only with inertia; its speed a number
   const std::string dyn = edit(head, "analysis: static", "analysis: dynamic");
   const std::string dynTail = wrap + contact + "dynamics: {dt: 1e-3, t_end: 0.1}\n";  // lines 10 .. 13
+  {  // the bristle law: its stiffness defaults to the normal penalty's
+    const std::string bristle = edit(contact, "law: coulomb, mu: 0.4", "law: bristle, mu: 0.4");
+    const SceneDescription b = parseScene(dyn + wrap + bristle + "dynamics: {dt: 1e-3, t_end: 0.1}\n", "scene.yaml");
+    EXPECT_EQ(b.contacts[0].law.friction, strand::contact::FrictionLaw::Bristle);
+    EXPECT_DOUBLE_EQ(b.contacts[0].law.tangentialStiffness, 1e7);
+    const SceneDescription k = parseScene(
+        dyn + wrap + edit(bristle, "mu: 0.4", "mu: 0.4, stiffness: 2e6") + "dynamics: {dt: 1e-3, t_end: 0.1}\n", "scene.yaml");
+    EXPECT_DOUBLE_EQ(k.contacts[0].law.tangentialStiffness, 2e6);
+    EXPECT_TRUE(failsWith(dyn + wrap + edit(bristle, "mu: 0.4", "mu: 0.4, slip_velocity: 0.1") + "dynamics: {dt: 1e-3, t_end: 0.1}\n",
+                          12, "contact[0].friction.slip_velocity", "not used by law: bristle"));
+  }
   const SceneDescription f = parseScene(
       edit(dyn, "speed: -1}", "speed: 2, inertia: 0.3, damping: 0.1, torque: {function: ramp, end: 1, value: 5}}") + dynTail,
       "scene.yaml");

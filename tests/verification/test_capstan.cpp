@@ -15,6 +15,8 @@
 // requirement: in time (generalized-alpha), a suddenly loaded rope with axial damping settles to
 //   the same T1; a rope sliding over a frictionless fixed drum with end masses conserves energy,
 //   the contact's work counted as load work (docs/user-guide.md, "Energy balance");
+// requirement: the bristle law (elastic stick) gives the same capstan tension while the drum slides,
+//   and, over a free pulley, moves as the Atwood machine with the energy balance closed;
 // requirement: -n 1 and -n 2 give the same tension (this test runs on both).
 #include <gtest/gtest.h>
 
@@ -286,6 +288,25 @@ TEST(Capstan, SuddenlyLoadedRopeSettlesToTheCapstanTension) {
   EXPECT_NEAR(T1 / exact, 1.0, 2e-3);
 }
 
+// The same with the bristle law: sliding everywhere on the wrap, its friction is mu p exactly.
+TEST(Capstan, BristleLawSlidingOnTheDrumHoldsTheCapstanTension) {
+  const double pi = std::acos(-1.0);
+  Capstan c = capstan(pi, 0.5, -1.0, 0.05);
+  c.scene.analysis = model::Analysis::Dynamic;
+  c.scene.bodies[0].section.set("damping_axial", 0.02);
+  c.scene.bodies[0].section.set("damping_bending", 0.02);
+  c.scene.contacts[0].law.friction = contact::FrictionLaw::Bristle;
+  c.scene.contacts[0].law.tangentialStiffness = 1e7;
+  const DynamicRun r = runDynamics(c.scene, 2e-3, 0.6, 0.8);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  solvers::Problem p(PETSC_COMM_WORLD, c.scene);
+  const double T1 = tensionAt(p, r.q, 0), exact = kT2 * std::exp(0.5 * pi);
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0) std::printf("dynamic capstan, bristle law: T1 = %.4f N (T2 exp(mu pi) = %.4f N)\n", T1, exact);
+  EXPECT_NEAR(T1 / exact, 1.0, 2e-3);
+}
+
 // The Atwood machines below: 2 kg and 1 kg at the ends of the rope of the capstan scene, hanging
 // 1 m below the drum's centre, released at rest under gravity, generalized-alpha at rho_inf = 1
 // (no numerical dissipation), dt 0.5 ms, 0.3 s. A softer penalty (1e5 N/m^2): the contact's own
@@ -418,4 +439,36 @@ TEST(Capstan, FreePulleySpinsUpUnderItsTorqueAgainstItsDamping) {
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (rank == 0) std::printf("free pulley at t = 0.5 s: omega = %.7f rad/s (exact %.7f)\n", omega, exact);
   EXPECT_NEAR(omega / exact, 1.0, 1e-4);
+}
+
+// The free-pulley Atwood machine with the bristle law: the rope sticks to the pulley (|T1 - T2| r
+// is far below the capstan's limit) and moves as the Atwood machine with the pulley's inertia; the
+// bristle's elastic energy is part of the contact's work, so the balance closes.
+TEST(Capstan, BristleLawTurnsAFreePulleyAsTheAtwoodMachine) {
+  const double J = 0.5;
+  model::SceneDescription sc = atwood(0.5, 1e-2);
+  sc.pulleys[0].inertia = J;
+  sc.contacts[0].law.friction = contact::FrictionLaw::Bristle;
+  sc.contacts[0].law.tangentialStiffness = 1e6;
+  const DynamicRun r = runDynamics(sc, 5e-4, 0.3, 1.0);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  solvers::Problem p(PETSC_COMM_WORLD, sc);
+  const int blk = p.model().pulleyBlock(0);
+  ASSERT_GE(blk, 0);
+  const solvers::DynamicsStep& last = r.steps.back();
+  double scale = 0.0;
+  for (const solvers::DynamicsStep& st : r.steps) scale = std::max({scale, st.kinetic, std::abs(st.potential)});
+  const double rho = kR - 13.0 / (kR * 1e5);
+  const double M = 3.0 + kRhoA * atwoodLength() + J / (rho * rho), xdot = atwoodSpeed(M, last.time);
+  const double drift = energyDrift(r);
+  const double drop = -1.0 - r.q[p.model().bodies()[0].posBlock[0] * 2 + 1], turned = r.q[2 * blk] * rho;
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0)
+    std::printf("Atwood over a free pulley, bristle law: T = %.5f J (M x'^2/2 = %.5f J), drift %.2e J of %.3f J; "
+                "drop %.5e m, pulley surface %.5e m\n",
+                last.kinetic, 0.5 * M * xdot * xdot, drift, scale, drop, turned);
+  EXPECT_NEAR(last.kinetic / (0.5 * M * xdot * xdot), 1.0, 1e-3);
+  EXPECT_LT(drift, 1e-4 * scale);
+  EXPECT_NEAR(turned / drop, 1.0, 2e-2);  // the rope's stretch and sinking: 1e-2
 }

@@ -140,6 +140,14 @@ public:
   // and torque about its centre [N m, counterclockwise], load[4 p + 3] its speed [rad/s] (a free
   // pulley's from V, null: 0); collective, every rank gets the sums.
   PetscErrorCode pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<double>& load);
+  // The bristle friction law's history (contact::BristleHistory, docs/contact.md): dynamics
+  // commits each accepted state at its time t. For checkpoints, contactHistory() gathers it to every
+  // rank as 5 numbers per deflected point (body, element, pulley, Gauss point, z) and the time it
+  // belongs to; restoreContactHistory() takes that list on any number of ranks.
+  bool hasContactHistory() const;
+  PetscErrorCode commitContact(Vec X, Vec V, PetscReal t);
+  PetscErrorCode contactHistory(std::vector<double>& packed, double* tn) const;
+  void restoreContactHistory(const std::vector<double>& packed, double tn);
   // Index set of the free (unsupported) DOFs owned by this rank, global numbering.
   PetscErrorCode freeDofs(IS* is) const;
   // Coordinates q = q0 + X as a full-length array in model numbering on rank 0 (empty elsewhere).

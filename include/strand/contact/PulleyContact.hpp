@@ -15,14 +15,24 @@
 //   none                  f_t = 0
 //   regularized Coulomb   f_t = -mu p tanh(s / v_s)  (|f_t| -> mu p for |s| >> v_s; "stick" is a
 //                         creep |s| < v_s whose force grows with it)
+//   bristle (elastic stick, the return mapping of elastoplasticity applied to the tangential
+//   deflection z of the contact point, dz/dt = s, integrated by backward Euler over the time dt
+//   since the last accepted step, whose deflection is z_n):
+//                         z_trial = z_n + dt s,  f_trial = -k_t z_trial
+//                         stick  |f_trial| <= mu p:  f_t = f_trial                (df_t/ds = -k_t dt)
+//                         slip   otherwise:          f_t = -mu p sign(z_trial)    (df_t/dp = -mu sign)
+//                         and the accepted step's deflection is z = -f_t / k_t (0 off contact).
+//                         A sticking point holds |f_t| < mu p with s -> 0: true stick, no creep.
 // Force on the belt: f = p n + f_t t. The pulley takes -f, and about its centre the torque
 // (d x (-f))_z = -rho f_t.
 //
 // Tangents, with P = I - n n^T, E = [e_z]x, u = v - v_c, phi = tanh(s / v_s), phi' = (1 - phi^2) / v_s:
 //   dn/dd = P / rho,  dt/dd = E P / rho,  dgdot/dd = u^T P / rho,  ds/dd = u^T E P / rho - omega n^T,
 //   dp/dd = -k n^T - c u^T P / rho,  dp/du = -c n^T,  ds/du = t^T,  ds/domega = -rho,
-//   df/dd = n dp/dd + p P / rho + t df_t/dd + f_t E P / rho,   df_t/dd = -mu (phi dp/dd + p phi' ds/dd),
-//   df/du = n dp/du + t df_t/du,   df_t/du = -mu (phi dp/du + p phi' t^T),   df/domega = mu p phi' rho t.
+//   df/dd = n dp/dd + p P / rho + t df_t/dd + f_t E P / rho,   df_t/dd = f_p dp/dd + f_s ds/dd,
+//   df/du = n dp/du + t df_t/du,   df_t/du = f_p dp/du + f_s t^T,   df/domega = -f_s rho t,
+// with the law's partials f_p = df_t/dp, f_s = df_t/ds (regularized Coulomb: f_p = -mu phi,
+// f_s = -mu p phi').
 // d = r - c and u = v - v_c: derivatives in the belt's r and v are those in d and u, in the pulley's
 // c and v_c their negatives.
 #pragma once
@@ -33,7 +43,7 @@
 
 namespace strand::contact {
 
-enum class FrictionLaw { None, RegularizedCoulomb };
+enum class FrictionLaw { None, RegularizedCoulomb, Bristle };
 
 struct ContactLaw {
   double stiffness = 0.0;     // k: normal penalty per unit reference length of belt [N/m^2]
@@ -41,6 +51,7 @@ struct ContactLaw {
   FrictionLaw friction = FrictionLaw::None;
   double mu = 0.0;            // Coulomb coefficient
   double slipVelocity = 1e-3; // v_s: the regularization [m/s]
+  double tangentialStiffness = 0.0;  // k_t: the bristle's stiffness per unit reference length [N/m^2]
   double offset = 0.0;        // the belt's contact surface from its centerline (h/2) [m]
 };
 
@@ -52,29 +63,81 @@ struct PulleyState {
   double radius = 0.0;
 };
 
+// The bristle law's history at one point: its deflection at the last accepted step and the time
+// since then (null or default: none, e.g. at the first step).
+struct BristleHistory {
+  double z = 0.0;   // z_n [m]
+  double dt = 0.0;  // t - t_n [s]
+};
+
 // What the law found at a point (for output and the tangents).
 struct ContactPoint {
   bool touching = false;  // p > 0
   bool closed = false;    // the tangents are those of a closed contact (touching, or at the surface)
+  bool sticking = false;  // bristle: inside the friction cone; regularized Coulomb: |s| < v_s
   double pressure = 0.0;  // p [N/m]
   double slip = 0.0;      // s [m/s]
   double friction = 0.0;  // f_t [N/m]
 };
 
 namespace detail {
+// f_t(p, s) of the scene's law.
 template <class S>
-S frictionFactor(const ContactLaw& law, const S& s) {  // f_t / p
+S frictionForce(const ContactLaw& law, const S& p, const S& s, const BristleHistory* h) {
   using std::tanh;
   using math::tanh;
-  if (law.friction == FrictionLaw::None) return S(0.0);
-  return -law.mu * tanh(s / law.slipVelocity);
+  switch (law.friction) {
+    case FrictionLaw::None: return S(0.0);
+    case FrictionLaw::RegularizedCoulomb: return -law.mu * p * tanh(s / law.slipVelocity);
+    case FrictionLaw::Bristle: {
+      const BristleHistory none;
+      const BristleHistory& hh = h ? *h : none;
+      const S trial = -law.tangentialStiffness * (hh.z + hh.dt * s);
+      if (std::fabs(math::value(trial)) <= law.mu * math::value(p)) return trial;
+      return math::value(trial) > 0.0 ? law.mu * p : -law.mu * p;
+    }
+  }
+  return S(0.0);
+}
+
+// f_t and its partials f_p = df_t/dp, f_s = df_t/ds.
+struct FrictionTangent {
+  double ft = 0.0, fp = 0.0, fs = 0.0;
+  bool sticking = false;
+};
+inline FrictionTangent frictionTangent(const ContactLaw& law, double p, double s, const BristleHistory* h) {
+  FrictionTangent out;
+  switch (law.friction) {
+    case FrictionLaw::None: break;
+    case FrictionLaw::RegularizedCoulomb: {
+      const double phi = std::tanh(s / law.slipVelocity);
+      out = {-law.mu * p * phi, -law.mu * phi, -law.mu * p * (1.0 - phi * phi) / law.slipVelocity,
+             std::fabs(s) < law.slipVelocity};
+      break;
+    }
+    case FrictionLaw::Bristle: {
+      const BristleHistory none;
+      const BristleHistory& hh = h ? *h : none;
+      const double trial = -law.tangentialStiffness * (hh.z + hh.dt * s);
+      if (std::fabs(trial) <= law.mu * p) {
+        out = {trial, 0.0, -law.tangentialStiffness * hh.dt, p > 0.0};
+      } else {
+        const double sign = trial > 0.0 ? 1.0 : -1.0;
+        out = {sign * law.mu * p, sign * law.mu, 0.0, false};
+      }
+      break;
+    }
+  }
+  return out;
 }
 }  // namespace detail
 
 // f (2) at a belt point r with velocity v; returns whether the point touches (p > 0). S = double,
 // or a dual number for the tests.
+// h: the bristle law's history at this point (null: none).
 template <class S>
-bool pointForce(const ContactLaw& law, const PulleyState& pl, const S* r, const S* v, S* f) {
+bool pointForce(const ContactLaw& law, const PulleyState& pl, const S* r, const S* v, S* f,
+                const BristleHistory* h = nullptr) {
   using std::sqrt;
   using math::sqrt;
   f[0] = f[1] = S(0.0);
@@ -87,14 +150,15 @@ bool pointForce(const ContactLaw& law, const PulleyState& pl, const S* r, const 
   const S p = -law.stiffness * g - law.damping * (n[0] * u[0] + n[1] * u[1]);
   if (!(math::value(p) > 0.0)) return false;
   const S s = t[0] * u[0] + t[1] * u[1] - pl.omega * rho;
-  const S ft = p * detail::frictionFactor(law, s);
+  const S ft = detail::frictionForce(law, p, s, h);
   for (int i = 0; i < 2; ++i) f[i] = p * n[i] + ft * t[i];
   return true;
 }
 
 // f, df/dr and df/dv (2 x 2, row-major; = df/dd and df/du), df/domega (2), and the point's state.
 inline ContactPoint pointTangent(const ContactLaw& law, const PulleyState& pl, const double* r, const double* v,
-                                 double* f, double* dfdr, double* dfdv, double* dfdomega) {
+                                 double* f, double* dfdr, double* dfdv, double* dfdomega,
+                                 const BristleHistory* h = nullptr) {
   ContactPoint out;
   for (int i = 0; i < 4; ++i) dfdr[i] = dfdv[i] = 0.0;
   f[0] = f[1] = dfdomega[0] = dfdomega[1] = 0.0;
@@ -113,13 +177,9 @@ inline ContactPoint pointTangent(const ContactLaw& law, const PulleyState& pl, c
   if (!(pTrial > 0.0) && !(g > -closedBand)) return out;  // separating: no force, no stiffness
   const double p = std::max(pTrial, 0.0);
   const double s = t[0] * u[0] + t[1] * u[1] - pl.omega * rho;
-  double phi = 0.0, dphi = 0.0;
-  if (law.friction == FrictionLaw::RegularizedCoulomb) {
-    phi = std::tanh(s / law.slipVelocity);
-    dphi = (1.0 - phi * phi) / law.slipVelocity;
-  }
-  const double ft = -law.mu * p * phi;
-  out = {p > 0.0, true, p, s, ft};
+  const detail::FrictionTangent fr = detail::frictionTangent(law, p, s, h);
+  const double ft = fr.ft;
+  out = {p > 0.0, true, p > 0.0 && fr.sticking, p, s, ft};
   for (int i = 0; i < 2; ++i) f[i] = p * n[i] + ft * t[i];
 
   double P[4], EP[4];  // P = I - n n^T, E P (E = [[0, -1], [1, 0]])
@@ -135,16 +195,16 @@ inline ContactPoint pointTangent(const ContactLaw& law, const PulleyState& pl, c
     const double uEP = (u[0] * EP[0 * 2 + j] + u[1] * EP[1 * 2 + j]) / rho;
     dp_dd[j] = -law.stiffness * n[j] - law.damping * uP;
     ds_dd[j] = uEP - pl.omega * n[j];
-    dft_dd[j] = -law.mu * (phi * dp_dd[j] + p * dphi * ds_dd[j]);
+    dft_dd[j] = fr.fp * dp_dd[j] + fr.fs * ds_dd[j];
     dp_du[j] = -law.damping * n[j];
-    dft_du[j] = -law.mu * (phi * dp_du[j] + p * dphi * t[j]);
+    dft_du[j] = fr.fp * dp_du[j] + fr.fs * t[j];
   }
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j) {
       dfdr[i * 2 + j] = n[i] * dp_dd[j] + p * P[i * 2 + j] / rho + t[i] * dft_dd[j] + ft * EP[i * 2 + j] / rho;
       dfdv[i * 2 + j] = n[i] * dp_du[j] + t[i] * dft_du[j];
     }
-  for (int i = 0; i < 2; ++i) dfdomega[i] = law.mu * p * dphi * rho * t[i];
+  for (int i = 0; i < 2; ++i) dfdomega[i] = -fr.fs * rho * t[i];
   return out;
 }
 

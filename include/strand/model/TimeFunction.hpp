@@ -4,6 +4,8 @@
 //   constant  f = value
 //   linear    f = rate t
 //   ramp      f = 0 before start, linear to `value` at end, `value` after
+//   cosine_ramp  f = 0 before start, value (1 - cos(pi (t - start) / (end - start))) / 2 to end,
+//             `value` after (continuous rate: e.g. the load torque of Pechstein & Gerstmayr's drive)
 //   sine      f = amplitude sin(2 pi frequency t + phase)
 //   spin_up   hub angle of seed 001 Eq. 57 (Omega0 = omega, T = duration):
 //               dpsi/dt = Omega0 (t/T - sin(2 pi t/T) / (2 pi))  for t <= T,  Omega0 after;
@@ -21,9 +23,9 @@ struct TimeValue {
 };
 
 struct TimeFunction {
-  enum class Kind { Constant, Linear, Ramp, Sine, SpinUp, Table };
+  enum class Kind { Constant, Linear, Ramp, CosineRamp, Sine, SpinUp, Table };
   Kind kind = Kind::Constant;
-  double value = 0.0;                      // constant, ramp
+  double value = 0.0;                      // constant, ramp, cosine_ramp
   double rate = 0.0;                       // linear
   double start = 0.0, end = 0.0;           // ramp [s]
   double amplitude = 0.0, frequency = 0.0, phase = 0.0;  // sine [Hz, rad]
