@@ -639,6 +639,21 @@ PetscErrorCode Assembler::commitContact(Vec X, Vec V, PetscReal t) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::settleContact(Vec X, Vec V, PetscReal t, bool release, PetscInt* changed) {
+  PetscFunctionBeginUser;
+  *changed = 0;
+  if (!_contacts->hasHistory()) PetscFunctionReturn(0);
+  LocalRead x, v;
+  PetscCall(beginLocal(X, _xWork, &x));
+  if (V) PetscCall(beginLocal(V, _vWork, &v));
+  int mine = _contacts->settle(x.a, V ? v.a : nullptr, t, release), all = 0;
+  PetscCall(endLocal(&x));
+  if (V) PetscCall(endLocal(&v));
+  PetscCallMPI(MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_SUM, _dofs.comm()));
+  *changed = all;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::contactHistory(std::vector<double>& packed, double* tn) const {
   PetscFunctionBeginUser;
   std::vector<double> mine;

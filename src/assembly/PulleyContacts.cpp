@@ -1,6 +1,7 @@
 #include "PulleyContacts.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "strand/elements/ElementKinds.hpp"
 #include "strand/math/Gauss.hpp"
@@ -8,6 +9,9 @@
 namespace strand::assembly {
 
 namespace {
+
+// The frozen-state iteration's tolerance on a point's friction force, relative to mu p (settle).
+constexpr double kSettleTolerance = 1e-4;
 
 // The torque about the pulley's centre of the belt's pull -f at d = r - c: (d x (-f))_z.
 double torqueOf(const double* d, const double* f) { return -(d[0] * f[1] - d[1] * f[0]); }
@@ -85,6 +89,7 @@ PulleyContacts::PulleyContacts(const model::Model& model, const model::DofMap& d
       b.reach = 2.0 * body.elementLength;
       b.history = _z.size();
       _z.resize(_z.size() + b.elements.size() * set.pulleys.size() * b.weight.size(), 0.0);
+      _state.resize(_z.size(), 1);  // a belt starting at rest on its pulleys: held to stick
       _hasHistory |= set.law.friction == contact::FrictionLaw::Bristle;
       if (!b.elements.empty()) _bodies.push_back(std::move(b));
     }
@@ -159,7 +164,7 @@ void PulleyContacts::forEachNearPoint(const double* x, const double* v,
 
 const contact::BristleHistory* PulleyContacts::historyAt(size_t h, double t, contact::BristleHistory* buf) const {
   if (!_hasHistory) return nullptr;
-  *buf = {_z[h], t - _tn};
+  *buf = {_z[h], t - _tn, _state[h]};
   return buf;
 }
 
@@ -335,6 +340,35 @@ void PulleyContacts::commit(const double* x, const double* v, double t) {
     _z.swap(z);
   }
   _tn = t;
+}
+
+int PulleyContacts::settle(const double* x, const double* v, double t, bool release) {
+  if (!_hasHistory) return 0;
+  if (release) {
+    std::fill(_state.begin(), _state.end(), 0);
+    return 0;
+  }
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+  std::vector<signed char> state(_state.size(), 0);  // off contact: as the law decides when it lands
+  int changed = 0;
+  forEachNearPoint(x, v, pulleys, [&](const LocalBody&, const model::PulleyContactSet& set, int, int, int p,
+                                      size_t h, const double* rg, const double* vg) {
+    if (set.law.friction != contact::FrictionLaw::Bristle) return;
+    double f[2], dr[4], dv[4], dw[2];
+    contact::BristleHistory free = {_z[h], t - _tn, 0};  // the law's own state
+    const contact::ContactPoint c = contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw, &free);
+    if (!c.touching) return;
+    const double trial = -set.law.tangentialStiffness * (free.z + free.dt * c.slip), limit = set.law.mu * c.pressure;
+    state[h] = static_cast<signed char>(contact::bristleState(trial, limit));
+    if (_state[h] == 0 || _state[h] == state[h]) return;
+    // a point whose held state's force is within kSettleTolerance mu p of the law's keeps it: at
+    // the cone's edge the two states give the same solution, and flipping it would cycle
+    const double held = _state[h] == 1 ? trial : (_state[h] == 2 ? limit : -limit);
+    if (std::abs(held - c.friction) <= kSettleTolerance * limit) state[h] = _state[h];
+    else ++changed;
+  });
+  _state.swap(state);
+  return changed;
 }
 
 std::vector<PulleyContacts::HistoryEntry> PulleyContacts::history() const {

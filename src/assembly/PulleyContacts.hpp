@@ -55,6 +55,12 @@ public:
   // state at time t: each point's deflection becomes -f_t / k_t (0 off contact) and t the new t_n.
   bool hasHistory() const { return _hasHistory; }
   void commit(const double* x, const double* v, double t);
+  // The frozen-state iteration (docs/contact.md): each touching point's stick/slip state is held
+  // while Newton solves; settle() compares the states the law takes at the converged (x, v, t) with
+  // the held ones, holds the new ones and returns how many changed (a point that had none held, or
+  // that left contact, counts as agreeing). At the start every point is held to stick (a belt at
+  // rest on its pulleys). release: hold none (the law decides within Newton), returns 0.
+  int settle(const double* x, const double* v, double t, bool release);
   // The history as (body, element, pulley, point) -> z and t_n, for checkpoints; restore() puts
   // back what history() wrote (on any rank count: each rank takes its own elements' points).
   struct HistoryEntry {
@@ -101,6 +107,7 @@ private:
   std::vector<int> _ownedFree;          // free pulleys whose block this rank owns
   bool _hasHistory = false;             // some contact uses the bristle law
   std::vector<double> _z;               // committed deflections, per slot
+  std::vector<signed char> _state;      // held stick/slip states, per slot (BristleHistory::state)
   double _tn = 0.0;                     // the time they belong to
   // Slot h's history at time t (null without the bristle law).
   const contact::BristleHistory* historyAt(size_t h, double t, contact::BristleHistory* buf) const;

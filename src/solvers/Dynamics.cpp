@@ -90,6 +90,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   } else {
     PetscCallAbort(comm, TSSetType(_ts, kTsGeneralizedAlpha));
     PetscCallAbort(comm, GeneralizedAlphaSetNewtonRetry(_ts, retryNewton, this));
+    if (_asm.hasContactHistory()) PetscCallAbort(comm, GeneralizedAlphaSetSettle(_ts, settleContact, this));
     PetscCallAbort(comm, TSSetI2Function(_ts, nullptr, formFunction, this));
     PetscCallAbort(comm, TSSetI2Jacobian(_ts, _J, _J, formJacobian, this));
     PetscCallAbort(comm, applyScheme());
@@ -414,6 +415,14 @@ PetscErrorCode Dynamics::formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec 
 PetscErrorCode Dynamics::retryNewton(void* ctx, PetscBool* again) {
   PetscFunctionBeginUser;
   *again = static_cast<Dynamics*>(ctx)->_reuse.retryWithFullNewton() ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+// The bristle law's stick/slip states held while Newton solves (GeneralizedAlphaSetSettle).
+PetscErrorCode Dynamics::settleContact(void* ctx, PetscReal t, Vec X, Vec V, PetscBool release, PetscInt* changed) {
+  PetscFunctionBeginUser;
+  auto* self = static_cast<Dynamics*>(ctx);
+  PetscCall(self->_asm.settleContact(X, V, t, release == PETSC_TRUE, changed));
   PetscFunctionReturn(0);
 }
 

@@ -38,9 +38,13 @@ struct AlphaData {
   PetscReal coordinateNorm = 0.0;  // |q0| when X holds displacements from q0 (round-off scale)
   RetryFn retry = nullptr;
   void* retryCtx = nullptr;
+  SettleFn settle = nullptr;
+  void* settleCtx = nullptr;
 };
 
 AlphaData* dataOf(TS ts) { return static_cast<AlphaData*>(ts->data); }
+
+constexpr int kSettleRounds = 6;  // rounds of held states before the law decides within Newton
 
 // *to = a copy of from, created on first use
 PetscErrorCode copyInto(Vec from, Vec* to) {
@@ -202,6 +206,19 @@ PetscErrorCode choosePredictor(TS ts, Vec X1, PetscReal h) {
   PetscFunctionReturn(0);
 }
 
+// One Newton solve of the stage from X1, its iterations counted.
+PetscErrorCode solveStage(TS ts, Vec X1, SNESConvergedReason* reason) {
+  PetscFunctionBeginUser;
+  PetscCall(SNESSolve(ts->snes, nullptr, X1));
+  PetscInt nits, lits;
+  PetscCall(SNESGetIterationNumber(ts->snes, &nits));
+  PetscCall(SNESGetLinearSolveIterations(ts->snes, &lits));
+  ts->snes_its += nits;
+  ts->ksp_its += lits;
+  PetscCall(SNESGetConvergedReason(ts->snes, reason));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode step(TS ts) {
   AlphaData* d = dataOf(ts);
   PetscFunctionBeginUser;
@@ -240,14 +257,17 @@ PetscErrorCode step(TS ts) {
       PetscCall(addPredictor(ts, d->predictor, h, X1));
       if (d->predictor < 2) PetscCall(predictorOffset(ts, X1, h));
       PetscCall(TSPreStage(ts, d->stageTime));
-      PetscCall(SNESSolve(ts->snes, nullptr, X1));
-      PetscInt nits, lits;
-      PetscCall(SNESGetIterationNumber(ts->snes, &nits));
-      PetscCall(SNESGetLinearSolveIterations(ts->snes, &lits));
-      ts->snes_its += nits;
-      ts->ksp_its += lits;
       SNESConvergedReason reason;
-      PetscCall(SNESGetConvergedReason(ts->snes, &reason));
+      PetscCall(solveStage(ts, X1, &reason));
+      // held states (SettleFn): solve again while the solution's differ from those held
+      for (int round = 0; reason >= 0 && d->settle; ++round) {
+        PetscInt changed;
+        PetscCall(stageVectors(ts, X1));  // V1 of X1
+        PetscCall(d->settle(d->settleCtx, d->stageTime, X1, d->V1, round >= kSettleRounds ? PETSC_TRUE : PETSC_FALSE,
+                            &changed));
+        if (round > kSettleRounds || (!changed && round < kSettleRounds)) break;
+        PetscCall(solveStage(ts, X1, &reason));
+      }
       if (reason >= 0) break;
       // Newton failed: once more from X0 with full Newton, and keep X0 as the start for a while
       // (a suddenly loaded fine mesh: the extrapolated acceleration kinks the elements at a
@@ -523,6 +543,14 @@ PetscErrorCode GeneralizedAlphaGetPredictorOffset(TS ts, Vec* offset) {
   PetscCall(checkType(ts));
   const AlphaData* d = dataOf(ts);
   *offset = d->inStep && d->predictor < 2 ? d->offset : nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaSetSettle(TS ts, SettleFn settle, void* ctx) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  dataOf(ts)->settle = settle;
+  dataOf(ts)->settleCtx = ctx;
   PetscFunctionReturn(0);
 }
 

@@ -1,5 +1,6 @@
 // Belt scenes built in code (issue 34): a closed belt wrapped counterclockwise around two pulleys.
 #pragma once
+#include <cmath>
 #include <string>
 
 #include "strand/model/SceneDescription.hpp"
@@ -58,6 +59,49 @@ inline model::SceneDescription closedBelt(const BeltLoop& spec) {
   hold.dofs = {0};
   sc.supports.push_back(hold);
   sc.contacts.push_back(c);
+  return sc;
+}
+
+// The two-pulley drive of Pechstein & Gerstmayr (Multibody Syst. Dyn. 30, 2013) as set up in the
+// THREAD belt-drive study (issue 34): a closed belt (EA = 8000 N, EI = 4/3e-3 N m^2, rho A =
+// 8.288e-3 kg/m, height 1e-4 m, reference strain -0.05) around pulleys "a" (the driver, 0 -> 12 rad/s
+// over 0.05 .. 0.6 s) and "b" (J = 0.25 kg m^2, damping 2 N m s, load torque 25 (1 - cos(2 pi (t - 1)))
+// / 2 N m over 1 .. 1.5 s, then 25 N m) of radius 0.09995 m (the belt's centerline at 0.1 m), 0.1 pi m
+// apart; bristle friction mu = 0.5 with stiffness kt, normal penalty 1e8 N/m^2; gravity 9.81 m/s^2.
+// meshes/two-pulley-drive.yaml is the same scene.
+inline model::SceneDescription twoPulleyDrive(int elements, double kt = 1e8) {
+  BeltLoop spec;
+  spec.radius = 0.1;  // the wrap: the belt's centerline
+  spec.distance = 0.1 * std::acos(-1.0);
+  spec.elements = elements;
+  spec.EA = 8000.0;
+  spec.stretch = 1.0 / 0.95;
+  spec.stiffness = 1e8;
+  model::SceneDescription sc = closedBelt(spec);
+  sc.analysis = model::Analysis::Dynamic;
+  sc.supports.clear();  // the pulleys hold the loop
+  model::BodyDesc& belt = sc.bodies[0];
+  belt.section.set("I", 4.0 / 3.0 * 1e-12);                   // E = 1e9 Pa, A = 8e-6 m^2
+  belt.section.set("rho", 1036.0 * 0.08 * 1e-4 / (8000.0 / 1e9));  // rho A = 1036 kg/m^3 x 0.08 m x 1e-4 m
+  sc.loads.gravity = {0, -9.81, 0};
+  for (model::PulleyDesc& p : sc.pulleys) p.radius = 0.1 - 5e-5;
+  model::PulleyDesc& driver = sc.pulleys[0];
+  driver.speed.kind = model::TimeFunction::Kind::Ramp;
+  driver.speed.start = 0.05;
+  driver.speed.end = 0.6;
+  driver.speed.value = 12.0;
+  model::PulleyDesc& driven = sc.pulleys[1];
+  driven.inertia = 0.25;
+  driven.damping = 2.0;
+  driven.torque.kind = model::TimeFunction::Kind::CosineRamp;
+  driven.torque.start = 1.0;
+  driven.torque.end = 1.5;
+  driven.torque.value = -25.0;
+  contact::ContactLaw& law = sc.contacts[0].law;
+  law.offset = 5e-5;
+  law.friction = contact::FrictionLaw::Bristle;
+  law.mu = 0.5;
+  law.tangentialStiffness = kt;
   return sc;
 }
 

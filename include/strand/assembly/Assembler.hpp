@@ -146,6 +146,9 @@ public:
   // belongs to; restoreContactHistory() takes that list on any number of ranks.
   bool hasContactHistory() const;
   PetscErrorCode commitContact(Vec X, Vec V, PetscReal t);
+  // The frozen-state iteration (PulleyContacts::settle): *changed = the points, on all ranks, whose
+  // stick/slip state at the converged (X, V, t) differs from the one held while Newton solved.
+  PetscErrorCode settleContact(Vec X, Vec V, PetscReal t, bool release, PetscInt* changed);
   PetscErrorCode contactHistory(std::vector<double>& packed, double* tn) const;
   void restoreContactHistory(const std::vector<double>& packed, double tn);
   // Index set of the free (unsupported) DOFs owned by this rank, global numbering.

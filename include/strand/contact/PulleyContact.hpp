@@ -65,10 +65,16 @@ struct PulleyState {
 
 // The bristle law's history at one point: its deflection at the last accepted step and the time
 // since then (null or default: none, e.g. at the first step).
+// state: the stick/slip state held fixed while Newton solves a step (the frozen-state iteration of
+// docs/contact.md): 0 as the law decides, 1 stick (f_t = f_trial even beyond the cone),
+// 2 slip with f_t = +mu p, 3 slip with f_t = -mu p.
 struct BristleHistory {
   double z = 0.0;   // z_n [m]
   double dt = 0.0;  // t - t_n [s]
+  int state = 0;
 };
+// The state the law takes for a trial force against the cone mu p (1, 2 or 3 as above).
+inline int bristleState(double trial, double limit) { return std::fabs(trial) <= limit ? 1 : (trial > 0.0 ? 2 : 3); }
 
 // What the law found at a point (for output and the tangents).
 struct ContactPoint {
@@ -93,8 +99,9 @@ S frictionForce(const ContactLaw& law, const S& p, const S& s, const BristleHist
       const BristleHistory none;
       const BristleHistory& hh = h ? *h : none;
       const S trial = -law.tangentialStiffness * (hh.z + hh.dt * s);
-      if (std::fabs(math::value(trial)) <= law.mu * math::value(p)) return trial;
-      return math::value(trial) > 0.0 ? law.mu * p : -law.mu * p;
+      const int state = hh.state ? hh.state : bristleState(math::value(trial), law.mu * math::value(p));
+      if (state == 1) return trial;
+      return state == 2 ? law.mu * p : -law.mu * p;
     }
   }
   return S(0.0);
@@ -119,10 +126,11 @@ inline FrictionTangent frictionTangent(const ContactLaw& law, double p, double s
       const BristleHistory none;
       const BristleHistory& hh = h ? *h : none;
       const double trial = -law.tangentialStiffness * (hh.z + hh.dt * s);
-      if (std::fabs(trial) <= law.mu * p) {
+      const int state = hh.state && p > 0.0 ? hh.state : bristleState(trial, law.mu * p);
+      if (state == 1) {
         out = {trial, 0.0, -law.tangentialStiffness * hh.dt, p > 0.0};
       } else {
-        const double sign = trial > 0.0 ? 1.0 : -1.0;
+        const double sign = state == 2 ? 1.0 : -1.0;
         out = {sign * law.mu * p, sign * law.mu, 0.0, false};
       }
       break;

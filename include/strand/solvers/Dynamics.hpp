@@ -142,6 +142,7 @@ private:
   static PetscErrorCode formJacobian(TS, PetscReal t, Vec U, Vec V, Vec A, PetscReal shiftV, PetscReal shiftA, Mat J,
                                      Mat P, void* ctx);
   static PetscErrorCode retryNewton(void* ctx, PetscBool* again);
+  static PetscErrorCode settleContact(void* ctx, PetscReal t, Vec X, Vec V, PetscBool release, PetscInt* changed);
   static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec X, void* ctx);
   static PetscErrorCode postStep(TS ts);
   static PetscErrorCode prescribe(PetscReal t, Vec X, Vec V, Vec A, void* ctx);

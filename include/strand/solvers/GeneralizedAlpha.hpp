@@ -103,4 +103,12 @@ PetscErrorCode GeneralizedAlphaGetPredictorOffset(TS ts, Vec* offset);
 using RetryFn = PetscErrorCode (*)(void* ctx, PetscBool* again);
 PetscErrorCode GeneralizedAlphaSetNewtonRetry(TS ts, RetryFn retry, void* ctx);
 
+// A residual with states held fixed while Newton solves (the stick/slip states of contact points,
+// docs/contact.md): after each converged solve, settle(ctx, t, X1, V1, release, &changed) compares
+// them with those of the solution and holds the new ones; while any changed, Newton solves again
+// from X1. After kSettleRounds rounds it is called with release = true (hold none: the law decides
+// within Newton) and Newton solves once more.
+using SettleFn = PetscErrorCode (*)(void* ctx, PetscReal t, Vec X, Vec V, PetscBool release, PetscInt* changed);
+PetscErrorCode GeneralizedAlphaSetSettle(TS ts, SettleFn settle, void* ctx);
+
 }  // namespace strand::solvers

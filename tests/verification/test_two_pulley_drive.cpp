@@ -1,0 +1,158 @@
+// The two-pulley belt drive of Pechstein & Gerstmayr (Multibody Syst. Dyn. 30, 2013), as set up in
+// the THREAD belt-drive study (issue 34; docs/validation.md, "Two-pulley drive"), against the
+// closed forms of creep theory (Johnson, Contact Mechanics, 1985, ch. 8; Kong & Parker 2005).
+//
+// A closed belt (EA = 8000 N, EI = 4/3e-3 N m^2, rho A = 8.288e-3 kg/m, height 1e-4 m, reference
+// strain -0.05) around two pulleys of radius 0.09995 m (its centerline at r = 0.1 m) whose centres
+// lie 0.1 pi m apart; mu = 0.5 (the bristle law); gravity 9.81. The driver turns at 0 -> 12 rad/s
+// over 0.05 .. 0.6 s; the driven pulley (J = 0.25 kg m^2, damping 2 N m s) carries a load torque
+// 25 (1 - cos(2 pi (t - 1))) / 2 N m over 1 .. 1.5 s, then 25 N m. In the steady state:
+//   torque balance  (T1 - T2) r = c omega2 + 25 N m   (T1, T2: the tight and slack spans' tensions)
+//   speed ratio     omega2 / omega1 = lambda2 / lambda1: the belt's material flux v / lambda is the
+//                   same in both spans, and it leaves each pulley at the pulley's surface speed
+//                   (the stick arc lies at the entry); (1 + T2/EA) / (1 + T1/EA) to first order
+//   slip arcs       on each pulley, at its exit side, phi_s = ln(T1 / T2) / mu (Euler-Eytelwein over
+//                   the slip arc); stick over the rest of the wrap
+//
+// requirement: the belt's torque on the driven pulley equals c omega2 + 25 N m (2e-3), the span
+//   tensions' (T1 - T2) r too (5e-3), and the creep 1 - omega2/omega1 equals 1 - lambda2/lambda1
+//   (1e-2);
+// requirement: the slip arcs approach ln(T1/T2)/mu as the bristle stiffness k_t grows: the elastic
+//   stick carries part of the tension change before the points slip (a micro-slip zone that rigid
+//   stick has not), measured 15 % of the arc short at k_t = 1e7 N/m^2 and 7 % at 1e8 (the
+//   scene's; 1e9 does not run yet, docs/contact.md); asserted: below 10 % at 1e8 and falling;
+// requirement: -n 1 and -n 2 give the same speeds and tensions (this test runs on both).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "strand/solvers/Dynamics.hpp"
+#include "support/Belts.hpp"
+
+using namespace strand;
+using namespace strand::testing;
+
+namespace {
+
+constexpr double kR = 0.1, kEA = 8000.0, kMu = 0.5, kLoad = 25.0, kDamping = 2.0;
+
+struct Steady {
+  std::string failure;
+  double omega1 = 0, omega2 = 0, torque2 = 0;  // speeds; the belt's torque on the driven pulley
+  double lambda[2] = {0, 0}, T[2] = {0, 0};    // stretch and tension at the middle of the lower, upper span
+  double slipArc[2] = {0, 0};                  // per pulley: the angle its slipping points span [rad]
+  double spacing = 0;                          // the contact points' mean angular spacing on a wrap [rad]
+  long newton = 0;
+  int steps = 0;
+};
+
+double tensionOfStretch(double lambda) { return kEA * 0.5 * (lambda * lambda - 1.0) * lambda; }
+
+Steady runDrive(int elements, double kt, double dt, double tEnd) {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  const model::SceneDescription sc = twoPulleyDrive(elements, kt);
+  model::DynamicsDesc dd;
+  dd.rhoInf = 0.8;
+  dd.dt = dt;
+  dd.tEnd = tEnd;
+  solvers::Problem p(comm, sc);
+  Vec X, V;
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
+  Steady s;
+  {
+    solvers::Dynamics dyn(p.assembler(), dd);
+    PetscCallAbort(comm, dyn.setFromOptions());
+    solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec, Vec) -> PetscErrorCode {
+      s.newton += st.newtonIterations;
+      s.steps = st.step;
+      return 0;
+    };
+    PetscCallAbort(comm, dyn.run(X, V, cb, &s.failure));
+  }
+  std::vector<double> load;
+  PetscCallAbort(comm, p.assembler().pulleyLoads(X, V, tEnd, load));
+  s.omega1 = load[3];
+  s.omega2 = load[7];
+  s.torque2 = load[6];
+  std::vector<assembly::Assembler::ContactPointOut> points;
+  PetscCallAbort(comm, p.assembler().contactPoints(X, V, tEnd, points));
+  // slipping points' angles about their pulley's centre, on the wrapped half (x < 0 for the
+  // driver at the origin, x > 0 beyond the driven one's centre), measured from -y ccw
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  int touching[2] = {0, 0};
+  for (const auto& pt : points) {
+    if (!pt.state.touching) continue;
+    const model::Vec3& c = sc.pulleys[pt.pulley].center;
+    const double dx = pt.r[0] - c[0], dy = pt.r[1] - c[1];
+    if (pt.pulley == 0 ? dx > 0.0 : dx < 0.0) continue;  // the onset's few points beyond the wrap
+    ++touching[pt.pulley];
+    if (pt.state.sticking) continue;
+    double a = std::atan2(dx, -dy);  // driven: 0 .. pi from the bottom ccw; driver: -pi .. 0
+    if (pt.pulley == 0) a = -a;      // driver: 0 .. pi from the bottom clockwise
+    lo[pt.pulley] = std::min(lo[pt.pulley], a);
+    hi[pt.pulley] = std::max(hi[pt.pulley], a);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, lo, 2, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, hi, 2, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, touching, 2, MPI_INT, MPI_SUM, comm);
+  for (int k = 0; k < 2; ++k) s.slipArc[k] = hi[k] > lo[k] ? hi[k] - lo[k] : 0.0;
+  s.spacing = std::acos(-1.0) / std::max(1, (touching[0] + touching[1]) / 2);
+  std::vector<double> q;
+  PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
+  q.resize(p.model().numDofs());
+  MPI_Bcast(q.data(), static_cast<int>(q.size()), MPI_DOUBLE, 0, comm);
+  const model::Body& b = p.model().bodies()[0];
+  for (int k = 0; k < 2; ++k) {  // node 0: the middle of the lower span; N/2: of the upper one
+    const int blk = b.block(k * b.elements / 2, 1);
+    s.lambda[k] = std::hypot(q[2 * blk], q[2 * blk + 1]) / b.blockScale(1);
+    s.T[k] = tensionOfStretch(s.lambda[k]);
+  }
+  VecDestroy(&X);
+  VecDestroy(&V);
+  return s;
+}
+
+}  // namespace
+
+// Measured at t = 2 s (the load reached 25 N m at 1.5 s; the driven speed then changes by 3e-4
+// up to 2.45 s), 100 elements, 4 points each, dt = 2e-4 s, rho_inf = 0.8; the bristle stiffness
+// k_t = 1e8 N/m^2 (the scene's) and 1e7.
+TEST(TwoPulleyDrive, SteadyStateFollowsCreepTheory) {
+  double deficit[2];
+  const double kts[2] = {1e7, 1e8};
+  for (int run = 0; run < 2; ++run) {
+    const Steady s = runDrive(100, kts[run], 2e-4, 2.0);
+    ASSERT_TRUE(s.failure.empty()) << s.failure;
+    const int tight = s.T[1] > s.T[0] ? 1 : 0, slack = 1 - tight;
+    const double T1 = s.T[tight], T2 = s.T[slack];
+    const double torque = kDamping * s.omega2 + kLoad;
+    const double ratio = s.omega2 / s.omega1, creep = s.lambda[slack] / s.lambda[tight];
+    const double linear = (1.0 + T2 / kEA) / (1.0 + T1 / kEA);
+    const double arc = std::log(T1 / T2) / kMu;
+    deficit[run] = 1.0 - 0.5 * (s.slipArc[0] + s.slipArc[1]) / arc;
+    int rank;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    if (rank == 0) {
+      std::printf("two-pulley drive, k_t = %g N/m^2, t = 2 s, %d steps, %.2f Newton iterations per step\n", kts[run],
+                  s.steps, double(s.newton) / s.steps);
+      std::printf("  speeds %.5f, %.5f rad/s: ratio %.6f; lambda2/lambda1 %.6f (%.2e of the creep 1 - ratio), "
+                  "(1 + T2/EA)/(1 + T1/EA) %.6f\n",
+                  s.omega1, s.omega2, ratio, creep, std::abs(ratio - creep) / (1.0 - creep), linear);
+      std::printf("  spans: T1 %.3f N, T2 %.3f N; (T1 - T2) r = %.4f N m, belt torque on the driven pulley %.4f N m, "
+                  "c omega2 + 25 = %.4f N m\n",
+                  T1, T2, (T1 - T2) * kR, s.torque2, torque);
+      std::printf("  slip arcs %.4f (driver), %.4f (driven) rad; ln(T1/T2)/mu = %.4f rad (%.1f %% short); "
+                  "point spacing %.4f rad\n",
+                  s.slipArc[0], s.slipArc[1], arc, 100.0 * deficit[run], s.spacing);
+    }
+    if (run == 0) continue;  // the scene's k_t: the closed forms
+    EXPECT_NEAR(s.torque2 / torque, 1.0, 2e-3);
+    EXPECT_NEAR((T1 - T2) * kR / torque, 1.0, 5e-3);
+    EXPECT_NEAR((1.0 - ratio) / (1.0 - creep), 1.0, 1e-2);
+  }
+  EXPECT_LT(deficit[1], 0.10);
+  EXPECT_LT(deficit[1], 0.7 * deficit[0]);
+}
