@@ -159,7 +159,7 @@ public:
     if (dynamic) {
       code = dynamicSolve(*dyn, X, &failure);  // writes the initial frame itself
     } else {
-      writeFrame(X, 0.0);
+      writeFrame(X, nullptr, 0.0, 0.0);
       if (statics) code = staticSolve(*statics, X, &failure);
     }
     if (code == kExitSuccess && modal) code = modes(X, &failure);
@@ -192,12 +192,42 @@ private:
     if (_rank == 0) std::printf("%s\n", s.c_str());
   }
 
-  void writeFrame(Vec X, double time) {
+  // A frame of the state X (V: its velocities, null in statics) at time t (the contact law's time).
+  void writeFrame(Vec X, Vec V, double time, double t) {
     std::vector<double> q;
     PetscCallAbort(_comm, _problem.assembler().gatherToRoot(X, q));
+    std::unique_ptr<io::ElementContact> contact;
+    if (_problem.assembler().hasContact()) contact = gatherContact(X, V, t);
     std::vector<io::BodyFrame> frames;
-    if (_rank == 0) frames = io::makeFrames(_problem.model(), q, _scene.output.samplesPerElement);
+    if (_rank == 0) frames = io::makeFrames(_problem.model(), q, _scene.output.samplesPerElement, contact.get());
     _writer->writeFrame(time, frames);
+  }
+
+  // What the contact law finds at every contact point, per element, on rank 0 (null elsewhere).
+  std::unique_ptr<io::ElementContact> gatherContact(Vec X, Vec V, double t) {
+    std::vector<assembly::Assembler::ContactPointOut> points;
+    PetscCallAbort(_comm, _problem.assembler().contactPoints(X, V, t, points));
+    std::vector<double> mine;  // body, element, points per element, pressure, touching, sticking
+    const model::Model& m = _problem.model();
+    for (const auto& pt : points) {
+      int perElement = 4;
+      for (const model::PulleyContactSet& c : m.contacts())
+        if (c.body == pt.body) perElement = c.points;
+      mine.insert(mine.end(), {double(pt.body), double(pt.element), double(perElement), pt.state.pressure,
+                               pt.state.touching ? 1.0 : 0.0, pt.state.sticking ? 1.0 : 0.0});
+    }
+    int count = static_cast<int>(mine.size()), size = commSize();
+    std::vector<int> counts(size), offsets(size, 0);
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, _comm);
+    for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+    std::vector<double> all(_rank == 0 ? static_cast<size_t>(offsets[size - 1] + counts[size - 1]) : 0);
+    MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0, _comm);
+    if (_rank != 0) return nullptr;
+    auto out = std::make_unique<io::ElementContact>(m);
+    for (size_t i = 0; i + 5 < all.size(); i += 6)
+      out->add(static_cast<int>(all[i]), static_cast<int>(all[i + 1]), static_cast<int>(all[i + 2]), all[i + 3],
+               all[i + 4] != 0.0, all[i + 5] != 0.0);
+    return out;
   }
 
   // /series/pulley_<name>_{fx, fy, torque, speed}: what the belts exert on each pulley (force, torque
@@ -231,7 +261,7 @@ private:
       _progress.update("load step " + std::to_string(s.step) + "  load factor " + fmt("%.4f", s.loadFactor) +
                        "  Newton " + std::to_string(s.newtonIterations) + "  |R| " + fmt("%.2e", s.residualNorm) +
                        "  e/e1 " + fmt("%.1e", s.energyRatio));
-      PetscCallCXX(writeFrame(Xs, s.loadFactor));
+      PetscCallCXX(writeFrame(Xs, nullptr, s.loadFactor, 0.0));
       PetscCallCXX(_writer->writeScalarSeries("load_factor", s.loadFactor));
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
       PetscCallCXX(_writer->writeScalarSeries("residual_norm", s.residualNorm));
@@ -304,7 +334,7 @@ private:
       } else if (s.step % d.outputEvery == 0) {
         frame = true;
       }
-      if (frame) PetscCallCXX(writeFrame(Xs, s.time));
+      if (frame) PetscCallCXX(writeFrame(Xs, Vs, s.time, s.time));
       PetscCallCXX(_writer->writeScalarSeries("time", s.time));
       PetscCallCXX(_writer->writeScalarSeries("kinetic_energy", s.kinetic));
       PetscCallCXX(_writer->writeScalarSeries("strain_energy", s.strain));
@@ -443,7 +473,7 @@ private:
       PetscCallAbort(_comm, VecWAXPY(Y, 0.1 * span / amax, r.shapes[k], X));
       std::vector<double> q;
       PetscCallAbort(_comm, _problem.assembler().gatherToRoot(Y, q));
-      shapes.push_back(_rank == 0 ? io::makeFrames(_problem.model(), q, _scene.output.samplesPerElement)
+      shapes.push_back(_rank == 0 ? io::makeShapes(_problem.model(), q, _scene.output.samplesPerElement)
                                   : std::vector<io::BodyFrame>{});
       say("mode " + std::to_string(k + 1) + ": " + fmt("%.8g Hz", hz.back()) + "  (" +
           (r.rigid[k] ? std::string("rigid-body mode") : "omega " + fmt("%.8g rad/s", r.omega[k]) + ", omega_bar " +

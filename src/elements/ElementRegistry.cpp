@@ -1,5 +1,8 @@
 #include "strand/elements/ElementRegistry.hpp"
 
+#include <type_traits>
+#include <utility>
+
 #include "strand/elements/ElementKinds.hpp"
 
 namespace strand::elements {
@@ -19,6 +22,15 @@ template <class K>
 bool velocityDependentOf(const SectionValues& v, const BodyDiscretization& d) {
   return K::velocityDependent(K::body(v, d));
 }
+
+// Kinds that provide an axial force (static double axialForce(SectionValues, BodyDiscretization,
+// qElement, eta)).
+template <class K, class = void>
+struct HasAxialForce : std::false_type {};
+template <class K>
+struct HasAxialForce<K, std::void_t<decltype(K::axialForce(std::declval<const SectionValues&>(),
+                                                           std::declval<const BodyDiscretization&>(),
+                                                           std::declval<const double*>(), 0.0))>> : std::true_type {};
 
 template <class K>
 KindInfo infoOf() {
@@ -41,6 +53,7 @@ KindInfo infoOf() {
   i.interpolation = &K::interpolation;
   i.interpolationAt = &K::interpolationAt;
   i.referenceValues = &referenceValuesOf<K>;
+  if constexpr (HasAxialForce<K>::value) i.axialForce = &K::axialForce;
   return i;
 }
 

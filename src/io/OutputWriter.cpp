@@ -119,10 +119,11 @@ public:
     for (const BodyLayout& L : bodies) {
       spaces_.push_back(simpleSpace({static_cast<hsize_t>(L.pointsPerBody), 3}));
       spaces_.push_back(simpleSpace({static_cast<hsize_t>(L.nodes), static_cast<hsize_t>(L.coordsPerNode)}));
+      spaces_.push_back(simpleSpace({static_cast<hsize_t>(L.pointsPerBody - 1)}));
     }
   }
 
-  // /frames/<name> with attribute time and <body>/{centerline,coordinates}
+  // /frames/<name> with attribute time and <body>/{centerline,coordinates,<cell fields>}
   void write(hid_t parent, const std::string& name, double time, const std::vector<BodyFrame>& data) {
     Hid g(check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl_.get(), H5P_DEFAULT),
                 "cannot create group '" + name + "'"),
@@ -138,8 +139,10 @@ public:
       Hid bg(check(H5Gcreate2(g.get(), bodies_[b].name.c_str(), H5P_DEFAULT, gcpl_.get(), H5P_DEFAULT),
                    "cannot create group '" + bodies_[b].name + "'"),
              H5Gclose);
-      dataset(bg.get(), "centerline", spaces_[2 * b].get(), data[b].centerline);
-      dataset(bg.get(), "coordinates", spaces_[2 * b + 1].get(), data[b].coordinates);
+      dataset(bg.get(), "centerline", spaces_[3 * b].get(), data[b].centerline);
+      dataset(bg.get(), "coordinates", spaces_[3 * b + 1].get(), data[b].coordinates);
+      for (std::size_t f = 0; f < data[b].cellFields.size(); ++f)
+        dataset(bg.get(), bodies_[b].cellFields[f].c_str(), spaces_[3 * b + 2].get(), data[b].cellFields[f]);
       bg.close("cannot close group '" + bodies_[b].name + "'");
     }
     g.close("cannot close group '" + name + "'");
@@ -250,7 +253,8 @@ struct OutputWriter::Impl {
                              path + "'");
   }
 
-  void checkFrames(const std::vector<BodyFrame>& data, const std::string& what) const {
+  // withFields: a frame (the layout's cell fields), else a mode shape (none)
+  void checkFrames(const std::vector<BodyFrame>& data, const std::string& what, bool withFields) const {
     if (data.size() != bodies.size())
       throw std::invalid_argument("OutputWriter: " + what + " has " + std::to_string(data.size()) +
                                   " bodies, the layout has " + std::to_string(bodies.size()));
@@ -266,6 +270,17 @@ struct OutputWriter::Impl {
         throw std::invalid_argument("OutputWriter: " + what + ", body '" + L.name + "': coordinates has " +
                                     std::to_string(data[b].coordinates.size()) + " values, expected " +
                                     std::to_string(nq) + " (nodes x coordsPerNode)");
+      if (withFields && data[b].cellFields.size() != L.cellFields.size())
+        throw std::invalid_argument("OutputWriter: " + what + ", body '" + L.name + "': " +
+                                    std::to_string(data[b].cellFields.size()) + " cell fields, the layout has " +
+                                    std::to_string(L.cellFields.size()));
+      if (!withFields && !data[b].cellFields.empty())
+        throw std::invalid_argument("OutputWriter: " + what + ", body '" + L.name + "': mode shapes carry no cell fields");
+      for (const std::vector<double>& f : data[b].cellFields)
+        if (f.size() != static_cast<std::size_t>(L.pointsPerBody - 1))
+          throw std::invalid_argument("OutputWriter: " + what + ", body '" + L.name + "': a cell field has " +
+                                      std::to_string(f.size()) + " values, expected " +
+                                      std::to_string(L.pointsPerBody - 1) + " (pointsPerBody - 1)");
     }
   }
 
@@ -283,7 +298,7 @@ struct OutputWriter::Impl {
 
   // One spatial collection over the bodies, whose centerlines live under `h5Group`.
   std::string spatialGrid(const std::string& name, double time, const std::string& h5Group,
-                          const std::string& extra) const {
+                          const std::string& extra, bool withFields) const {
     std::ostringstream x;
     x << "      <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
     x << "        <Time Value=\"" << formatDouble(time) << "\"/>\n";
@@ -303,6 +318,12 @@ struct OutputWriter::Impl {
         << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5Ref << ":" << h5Group
         << "/" << body << "/centerline</DataItem>\n";
       x << "          </Geometry>\n";
+      for (const std::string& f : withFields ? L.cellFields : std::vector<std::string>{}) {
+        x << "          <Attribute Name=\"" << xmlEscape(f) << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
+        x << "            <DataItem Dimensions=\"" << segments << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+          << h5Ref << ":" << h5Group << "/" << body << "/" << xmlEscape(f) << "</DataItem>\n";
+        x << "          </Attribute>\n";
+      }
       x << "        </Grid>\n";
     }
     x << "      </Grid>\n";
@@ -319,6 +340,11 @@ struct OutputWriter::Impl {
       if (L.elements < 1 || L.nodes < 1 || L.coordsPerNode < 1 || L.pointsPerBody < 2)
         throw std::invalid_argument("OutputWriter: body '" + L.name +
                                     "' needs elements, nodes, coordsPerNode >= 1 and pointsPerBody >= 2");
+      for (const std::string& f : L.cellFields) {
+        checkName(f, "cell field");
+        if (f == "centerline" || f == "coordinates")
+          throw std::invalid_argument("OutputWriter: body '" + L.name + "': cell field '" + f + "' clashes with a dataset");
+      }
     }
 
     // written through the committing driver: the result changes only by atomic commits
@@ -386,9 +412,12 @@ struct OutputWriter::Impl {
   // Buffers the frame; the next commit writes it.
   void writeFrame(double time, const std::vector<BodyFrame>& data) {
     requireOpen("writeFrame");
-    checkFrames(data, "frame " + std::to_string(frames));
+    checkFrames(data, "frame " + std::to_string(frames), true);
     pendingFrames.push_back({time, data});
-    for (const BodyFrame& f : data) pendingBytes += 8 * (f.centerline.size() + f.coordinates.size());
+    for (const BodyFrame& f : data) {
+      pendingBytes += 8 * (f.centerline.size() + f.coordinates.size());
+      for (const std::vector<double>& c : f.cellFields) pendingBytes += 8 * c.size();
+    }
     ++frames;
     // the first frame is committed at once: a file that a viewer opens early shows the start
     if (committedFrames == 0 || commitDue()) commitBlock();
@@ -449,7 +478,7 @@ struct OutputWriter::Impl {
         for (int k = 0; k < n; ++k) {
           const std::string name = formatIndex(first + k);
           out.write(framesGroup.get(), name, pendingFrames[k].time, pendingFrames[k].data);
-          grids += spatialGrid("frame_" + name, pendingFrames[k].time, "/frames/" + name, "");
+          grids += spatialGrid("frame_" + name, pendingFrames[k].time, "/frames/" + name, "", true);
         }
       }
       if (n > 0) updateAttribute(framesGroup.get(), "count", first + n);
@@ -529,7 +558,7 @@ struct OutputWriter::Impl {
     if (freqs.size() != shapes.size())
       throw std::invalid_argument("OutputWriter::writeModes: " + std::to_string(freqs.size()) +
                                   " frequencies but " + std::to_string(shapes.size()) + " mode shapes");
-    for (std::size_t m = 0; m < shapes.size(); ++m) checkFrames(shapes[m], "mode " + std::to_string(m));
+    for (std::size_t m = 0; m < shapes.size(); ++m) checkFrames(shapes[m], "mode " + std::to_string(m), false);
     if (!residuals.empty() && residuals.size() != freqs.size())
       throw std::invalid_argument("OutputWriter::writeModes: " + std::to_string(freqs.size()) + " frequencies but " +
                                   std::to_string(residuals.size()) + " residuals");
@@ -561,7 +590,8 @@ struct OutputWriter::Impl {
         // ParaView steps through the modes as "time" = mode index; the frequency rides along.
         grids += spatialGrid("mode_" + name, static_cast<double>(m), "/modes/" + name,
                              "        <Information Name=\"frequency_hz\" Value=\"" +
-                                 formatDouble(freqs[m]) + "\"/>\n");
+                                 formatDouble(freqs[m]) + "\"/>\n",
+                             false);
       }
       modes.close("cannot close group '/modes'");
       commitBlock();  // with whatever is buffered

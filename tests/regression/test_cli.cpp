@@ -476,6 +476,29 @@ TEST(Cli, CapstanSceneWritesThePulleysLoadOnOneAndTwoRanks) {
       "print('PULLEY_OK' if fy < 1e-3 and tq < 1e-3 and ranks < 1e-8 else 'PULLEY_BAD')\n";
   auto c = python(dir, check, "");
   EXPECT_NE(c.output.find("PULLEY_OK"), std::string::npos) << c.output;
+  // The frame's fields along the rope (docs/contact.md, "Output"): the axial force T1 at the pinned
+  // end and T2 at the loaded one; on the wrap the drum slides under the rope (contact_state 2) and
+  // presses with p = T lambda / r (lambda = 1 + T/EA to first order, EA = 1e5 N), off it nothing.
+  // The fields are per segment (4 per element); pressure and state are the element's, so the
+  // pressure is compared with the element's mean tension (T grows by mu dphi = 3.6 % along one),
+  // three elements away from the wrap's ends (measured: 1.3e-3; the onset's elements: up to 3.8e-3
+  // on the third from an end, more on the first two)
+  const std::string fields =
+      "import h5py, numpy as np\n"
+      "for name in ('c1.h5', 'c2.h5'):\n"
+      "  f = h5py.File('" + dir.string() + "/' + name); k = sorted(f['frames'].keys())[-1]; b = f['frames'][k]['rope']\n"
+      "  T = b['axial_force'][:]; p = b['contact_pressure'][:]; s = b['contact_state'][:]\n"
+      "  T1 = 100.0 * np.exp(0.5 * np.pi)\n"
+      "  ends = max(abs(T[0] / T1 - 1), abs(T[-1] / 100.0 - 1))\n"
+      "  Te = T.reshape(-1, 4).mean(axis=1); pe = p[::4]; se = s[::4]\n"
+      "  wrap = np.flatnonzero(se == 2); inner = wrap[3:-3]\n"
+      "  press = np.max(np.abs(pe[inner] / (Te[inner] * (1 + Te[inner] / 1e5) / 0.5) - 1))\n"
+      "  off = np.max(np.abs(p[s == 0])) if np.any(s == 0) else 0.0\n"
+      "  print('%s: ends %.1e wrap %d of %d pressure %.1e off %.1e' % (name, ends, len(wrap), len(s), press, off))\n"
+      "  print('FIELDS_OK' if ends < 2e-3 and press < 2e-3 and off == 0 and np.all(s[:len(s)//4] == 0) else 'FIELDS_BAD')\n";
+  auto fc = python(dir, fields, "");
+  EXPECT_EQ(fc.output.find("FIELDS_BAD"), std::string::npos) << fc.output;
+  EXPECT_NE(fc.output.find("FIELDS_OK"), std::string::npos) << fc.output;
   fs::remove_all(dir);
 }
 

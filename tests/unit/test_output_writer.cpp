@@ -643,3 +643,50 @@ TEST(OutputWriter, VectorSeriesKeepTheirWidth) {
     fs::remove_all(dir);
   }
 }
+
+// Cell fields (BodyLayout::cellFields): one value per centerline segment, written as
+// /frames/<k>/<body>/<field> and named in the .xmf as a cell attribute of the body's polyline;
+// mode shapes carry none; a wrong count or size, or a name that clashes, is refused.
+TEST(OutputWriter, CellFieldsAreWrittenPerSegmentAndNamedInTheXdmf) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const std::string dir = freshDir("cells");
+  auto bodies = twoBodies();
+  bodies[0].cellFields = {"axial_force", "contact_state"};
+  auto withFields = [&](int f) {
+    auto frames = makeFrames(bodies, f);
+    for (std::size_t k = 0; k < bodies[0].cellFields.size(); ++k) {
+      std::vector<double> v;
+      for (int i = 0; i < bodies[0].pointsPerBody - 1; ++i) v.push_back(value(f, 0, i, 2 + static_cast<int>(k)));
+      frames[0].cellFields.push_back(v);
+    }
+    return frames;
+  };
+  {
+    OutputWriter w(comm, dir + "/f.h5", runInfo(), bodies);
+    EXPECT_THROW(w.writeFrame(0.0, makeFrames(bodies, 0)), std::invalid_argument);  // fields missing
+    auto wrong = withFields(0);
+    wrong[0].cellFields[1].pop_back();
+    EXPECT_THROW(w.writeFrame(0.0, wrong), std::invalid_argument);
+    w.writeFrame(0.0, withFields(0));
+    w.writeFrame(0.5, withFields(1));
+    EXPECT_THROW(w.writeModes({1.0}, {withFields(2)}), std::invalid_argument);  // shapes carry none
+    w.writeModes({1.0}, {makeFrames(bodies, 2)});
+    w.close();
+  }
+  auto clash = twoBodies();
+  clash[1].cellFields = {"centerline"};
+  EXPECT_THROW(OutputWriter(comm, dir + "/g.h5", runInfo(), clash), std::invalid_argument);
+  if (rankOf(comm) == 0) {
+    hid_t file = H5Fopen((dir + "/f.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    EXPECT_EQ(readDoubles(file, "/frames/00001/main/contact_state"), withFields(1)[0].cellFields[1]);
+    EXPECT_EQ(readDoubles(file, "/frames/00000/main/axial_force"), withFields(0)[0].cellFields[0]);
+    H5Fclose(file);
+    const std::string xmf = readText(dir + "/f.xmf");
+    EXPECT_NE(xmf.find("<Attribute Name=\"axial_force\" AttributeType=\"Scalar\" Center=\"Cell\">"), std::string::npos);
+    EXPECT_NE(xmf.find("f.h5:/frames/00001/main/contact_state</DataItem>"), std::string::npos);
+    EXPECT_EQ(xmf.find("/stay/axial_force"), std::string::npos);
+    EXPECT_EQ(readText(dir + "/f_modes.xmf").find("Attribute"), std::string::npos);
+    fs::remove_all(dir);
+  }
+}

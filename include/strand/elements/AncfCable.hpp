@@ -310,6 +310,22 @@ public:
     for (int a = 0; a < 4; ++a) w[a] = sl.N[a];
   }
 
+  // The axial force T = EA eps |r'| at eta (eps = (|r'|^2 - 1)/2, the Green strain of the elastic
+  // line against the unit-stretch reference, pretension included: r' = dr/dx of the current
+  // coordinates q; |r'| the stretch), the elastic part (no Kelvin-Voigt rate).
+  static double axialForce(const SectionValues& v, const BodyDiscretization& d, const double* q, double eta) {
+    Geometry geo;
+    geo.length = d.elementLength;
+    geo.slopeScale[0] = geo.slopeScale[1] = d.gradientScale;
+    const Slots sl = slots(geo, math::hermite(eta));
+    double rp[D] = {};
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < D; ++i) rp[i] += sl.B1[a] * q[a * D + i];
+    double l2 = 0.0;
+    for (int i = 0; i < D; ++i) l2 += rp[i] * rp[i];
+    return v.number("E") * v.number("A") * 0.5 * (l2 - 1.0) * std::sqrt(l2);
+  }
+
   // The same at the element's current coordinates q (its shape functions do not depend on them).
   static void interpolationAt(const BodyDiscretization& d, const double*, double eta, double* w) {
     interpolation(d, eta, w);

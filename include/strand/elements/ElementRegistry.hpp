@@ -33,6 +33,9 @@ struct KindInfo {
   // coordinates q0 (elements x (2 blocksPerNode dim) values, element-major)
   std::vector<double> (*referenceValues)(const SectionValues&, const BodyDiscretization&, const double* q0,
                                          int elements) = nullptr;
+  // the axial (tension) force at eta of an element at coordinates qElement, elastic part (null: the
+  // kind does not provide it; the output then has no axial_force field)
+  double (*axialForce)(const SectionValues&, const BodyDiscretization&, const double* qElement, double eta) = nullptr;
   int blocksPerElement() const { return 2 * blocksPerNode; }
   // The node block with this role (-1: none); the block holding a material coordinate (ALE kinds).
   int blockWith(BlockRole role) const {

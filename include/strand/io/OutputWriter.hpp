@@ -78,11 +78,15 @@ struct BodyLayout {
   int nodes = 0;
   int coordsPerNode = 0;
   int pointsPerBody = 0;  // centerline sample points, >= 2
+  // Fields each frame carries along the centerline, one value per segment (pointsPerBody - 1):
+  // /frames/<k>/<body>/<field>, an XDMF cell attribute (e.g. axial_force, contact_pressure).
+  std::vector<std::string> cellFields;
 };
 
 struct BodyFrame {
   std::vector<double> centerline;   // pointsPerBody x 3, row-major
   std::vector<double> coordinates;  // nodes x coordsPerNode, row-major
+  std::vector<std::vector<double>> cellFields;  // frames: the layout's cellFields in order; mode shapes: none
 };
 
 struct RunInfo {
