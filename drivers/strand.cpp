@@ -36,7 +36,7 @@ const char* kUsage =
     "  modes SCENE   natural frequencies about the scene's static state (SLEPc)\n"
     "  sweep SCENE   modes along the scene's sweep (gamma, omega, mass ratio or location):\n"
     "                tracked loci, veering / crossing, mode shift; HDF5 + CSV\n"
-    "  plot KIND ... charts from output files (campbell, lines); `strand plot --help`\n"
+    "  plot KIND ... charts from output files (campbell, nodes, lines, belt); `strand plot --help`\n"
     "  bench work-precision SCENE\n"
     "                integrators x step sizes against a reference: JSON lines + PNG chart\n"
     "  help [CMD]    this text, or the help of one command\n"

@@ -6,6 +6,7 @@
 
   strand_plot.py campbell SWEEP.h5 [--modes N] [--tracked] [--orders K] [--title T] [-o OUT.png]
   strand_plot.py nodes SWEEP.h5 [--modes N] [-o OUT.png]
+  strand_plot.py belt RUN.h5 [--body NAME] [--frame K] [--title T] [-o OUT.png]
 
 `campbell` draws the sorted frequency loci omega_bar(parameter) of a `strand sweep` file and marks
 each detected veering (circle, gap and mode shift in the legend) and crossing (cross); in a rotating
@@ -13,6 +14,9 @@ sweep it also draws the excitation lines omega = k Omega (k = 1 .. --orders, def
 Campbell diagram is read against, and marks and prints where they meet a locus; --tracked
 colours the loci by tracked shape (MAC) instead of by sorted order, which shows the mode shift.
 `nodes` draws the vibration nodes x/L of each mode shape against the parameter.
+`belt` draws, from a `strand run` file, the axial force along a belt (its arc length) at frame K
+(default: the last), its stretches on the pulleys sticking and slipping shaded, and each pulley's
+speed over time (/series/pulley_<name>_speed).
 `lines` draws one line per distinct value of the group keys, from the records that match every
 --where filter; --slope P adds a dashed reference line of slope P (a convergence rate) on a log-log
 chart. Uses Debian's matplotlib (run with /usr/bin/python3).
@@ -220,6 +224,62 @@ def cmd_nodes(a):
     print(out)
 
 
+def cmd_belt(a):
+    import h5py
+    import numpy as np
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    f = h5py.File(a.file, "r")
+    frames = f.get("frames")
+    if frames is None or len(frames.keys()) == 0:
+        sys.exit(f"'{a.file}' holds no frames")
+    names = sorted(frames.keys())
+    k = names[a.frame] if a.frame is not None else names[-1]
+    frame = frames[k]
+    bodies = [b for b in frame.keys() if isinstance(frame[b], h5py.Group) and "axial_force" in frame[b]]
+    if not bodies:
+        sys.exit(f"'{a.file}': no body with an axial_force field (cables write it)")
+    body = a.body or bodies[0]
+    if body not in bodies:
+        sys.exit(f"'{a.file}': no body '{body}' with an axial_force field; bodies: {', '.join(bodies)}")
+    g = frame[body]
+    c = g["centerline"][:]
+    seg = np.linalg.norm(np.diff(c, axis=0), axis=1)
+    s = np.concatenate(([0.0], np.cumsum(seg)))
+    mid = 0.5 * (s[:-1] + s[1:])
+    T = g["axial_force"][:]
+    speeds = sorted(n for n in f["series"].keys() if n.startswith("pulley_") and n.endswith("_speed")) if "series" in f else []
+    fig, axes = plt.subplots(2 if speeds else 1, 1, figsize=(6.4, 7.2 if speeds else 4.0), squeeze=False)
+    ax = axes[0][0]
+    ax.plot(mid, T, "-", color="k", lw=1.2, label="axial force")
+    if "contact_state" in g:
+        state = g["contact_state"][:]
+        for value, color, label in ((1, "tab:blue", "on a pulley, sticking"), (2, "tab:red", "on a pulley, slipping")):
+            on = state == value
+            if on.any():
+                ax.fill_between(mid, 0, T, where=on, color=color, alpha=0.25, step="mid", label=label)
+    ax.set_xlabel("arc length along the belt [m]")
+    ax.set_ylabel("axial force [N]")
+    ax.set_title(a.title or f"{body} at t = {frame.attrs['time']:g} s: {a.file}", fontsize=9)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    if speeds:
+        ax = axes[1][0]
+        t = f["series"]["time"][:] if "time" in f["series"] else np.arange(len(f["series"][speeds[0]]))
+        for n in speeds:
+            ax.plot(t, f["series"][n][:], "-", lw=1.2, label=n[len("pulley_"):-len("_speed")])
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("pulley speed [rad/s]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    out = default_output(a, "_belt.png")
+    fig.savefig(out, dpi=110)
+    print(out)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(prog="strand plot", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -248,6 +308,13 @@ def main(argv=None):
             c.add_argument("--tracked", action="store_true")
             c.add_argument("--orders", type=int, default=6, help="excitation lines k Omega, k = 1 .. ORDERS (0: none)")
         c.set_defaults(run=fn)
+    bt = sub.add_parser("belt", help="axial force along a belt (stick/slip shaded) and pulley speeds over time")
+    bt.add_argument("file")
+    bt.add_argument("--body")
+    bt.add_argument("--frame", type=int, help="frame index (default: the last; negative counts from the end)")
+    bt.add_argument("--title")
+    bt.add_argument("-o", "--output")
+    bt.set_defaults(run=cmd_belt)
     a = p.parse_args(argv)
     a.run(a)
 

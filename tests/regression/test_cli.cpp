@@ -499,6 +499,13 @@ TEST(Cli, CapstanSceneWritesThePulleysLoadOnOneAndTwoRanks) {
   auto fc = python(dir, fields, "");
   EXPECT_EQ(fc.output.find("FIELDS_BAD"), std::string::npos) << fc.output;
   EXPECT_NE(fc.output.find("FIELDS_OK"), std::string::npos) << fc.output;
+  // `strand plot belt`: the tension along the rope and the drum's speed (PNG written)
+  auto p = runCommand(strandBinary() + " plot belt " + (dir / "c1.h5").string() + " -o " + (dir / "belt.png").string());
+  EXPECT_EQ(p.exitCode, 0) << p.output;
+  EXPECT_TRUE(fs::exists(dir / "belt.png")) << p.output;
+  auto none = runCommand(strandBinary() + " plot belt " + (dir / "c1.h5").string() + " --body drum");
+  EXPECT_NE(none.exitCode, 0);
+  EXPECT_NE(none.output.find("no body 'drum' with an axial_force field; bodies: rope"), std::string::npos) << none.output;
   fs::remove_all(dir);
 }
 
