@@ -89,7 +89,7 @@ PulleyContacts::PulleyContacts(const model::Model& model, const model::DofMap& d
       b.reach = 2.0 * body.elementLength;
       b.history = _z.size();
       _z.resize(_z.size() + b.elements.size() * set.pulleys.size() * b.weight.size(), 0.0);
-      _state.resize(_z.size(), 1);  // a belt starting at rest on its pulleys: held to stick
+      _state.resize(_z.size(), 0);  // none held: the first solve lets the law decide
       _hasHistory |= set.law.friction == contact::FrictionLaw::Bristle;
       if (!b.elements.empty()) _bodies.push_back(std::move(b));
     }

@@ -58,8 +58,8 @@ public:
   // The frozen-state iteration (docs/contact.md): each touching point's stick/slip state is held
   // while Newton solves; settle() compares the states the law takes at the converged (x, v, t) with
   // the held ones, holds the new ones and returns how many changed (a point that had none held, or
-  // that left contact, counts as agreeing). At the start every point is held to stick (a belt at
-  // rest on its pulleys). release: hold none (the law decides within Newton), returns 0.
+  // that left contact, counts as agreeing). Before the first settle none is held. release: hold
+  // none (the law decides within Newton), returns 0.
   int settle(const double* x, const double* v, double t, bool release);
   // The history as (body, element, pulley, point) -> z and t_n, for checkpoints; restore() puts
   // back what history() wrote (on any rank count: each rank takes its own elements' points).

@@ -249,6 +249,7 @@ PetscErrorCode step(TS ts) {
       d->checkPredictor = true;
     }
     if (d->checkPredictor && fresh) PetscCall(choosePredictor(ts, X1, h));
+    bool released = false;  // held states (SettleFn) released after a failure
     for (PetscBool again = PETSC_TRUE; again;) {
       again = PETSC_FALSE;
       // predictor: constant acceleration (or velocity, or displacement)
@@ -274,6 +275,12 @@ PetscErrorCode step(TS ts) {
       // support and starts Newton outside its basin, docs/performance.md); the predictor is
       // weighed again after recheckEvery steps, twice as many after each failure from it
       if (d->retry) PetscCall(d->retry(d->retryCtx, &again));
+      if (d->settle && !released) {  // held states may be what failed: let the law decide, once more
+        PetscInt changed;
+        PetscCall(d->settle(d->settleCtx, d->stageTime, X1, d->V1, PETSC_TRUE, &changed));
+        released = true;
+        again = PETSC_TRUE;
+      }
       if (d->predictor > 0) {
         PetscCall(PetscInfo(ts, "Newton failed at t = %g from the %s predictor; from X0 for %d steps\n",
                             static_cast<double>(ts->ptime + h), kPredictorNames[d->predictor], d->recheckEvery));

@@ -107,7 +107,8 @@ PetscErrorCode GeneralizedAlphaSetNewtonRetry(TS ts, RetryFn retry, void* ctx);
 // docs/contact.md): after each converged solve, settle(ctx, t, X1, V1, release, &changed) compares
 // them with those of the solution and holds the new ones; while any changed, Newton solves again
 // from X1. After kSettleRounds rounds it is called with release = true (hold none: the law decides
-// within Newton) and Newton solves once more.
+// within Newton) and Newton solves once more; and when a solve fails, the step is retried from X0
+// with the states released.
 using SettleFn = PetscErrorCode (*)(void* ctx, PetscReal t, Vec X, Vec V, PetscBool release, PetscInt* changed);
 PetscErrorCode GeneralizedAlphaSetSettle(TS ts, SettleFn settle, void* ctx);
 
