@@ -26,6 +26,10 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   _variableMass = assembler.hasVariableMass();
   if (_variableMass && model::isFirstOrder(desc.integrator))
     throw std::logic_error("Dynamics: a configuration-dependent mass needs a generalized-alpha scheme");
+  for (const model::PulleyDesc& p : assembler.model().pulleys())  // the scene reader says so first
+    if (p.free() && model::isFirstOrder(desc.integrator))
+      throw std::logic_error("Dynamics: a free pulley needs a generalized-alpha scheme (the first-order "
+                             "schemes' matrices do not hold its couplings)");
   _moving = assembler.model().hasPrescribedMotion();
   _constrained = assembler.hasConstraints();
   for (const model::Body& b : assembler.model().bodies()) _energyFloor += 1e-12 * b.properties.EA * b.length;
