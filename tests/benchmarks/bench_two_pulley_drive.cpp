@@ -3,13 +3,17 @@
 // core (issue 34; docs/performance.md, "Two-pulley drive"). Issue 34's target: at most 40 s wall with
 // the span tensions within 2 % of the converged values (an open peer took 799 s here).
 //
-// One JSON line per (elements, dt): wall time, steps, Newton iterations per step, the contact's
-// share of the run (log event Strand:Asm:Contact), and at t = 2.45 s the driven pulley's speed and
-// the span tensions T1, T2 (at the middles of the spans, from the stretch), with their relative
-// differences from the finest run that finished (the last of the list that did).
+// One JSON line per case (elements, dt, contact points, friction law, integrator): wall time,
+// steps, Newton iterations per step, the contact's share of the run (log event
+// Strand:Asm:Contact), and at t = 2.45 s the driven pulley's speed and the span tensions T1, T2 (at
+// the middles of the spans, from the stretch), with their relative differences from the reference
+// run (400 elements, dt = 1e-4 s, 4 points, bristle, generalized-alpha; the last line) and
+// "error", the larger of the two tensions'. The work-precision chart of docs/performance.md:
+//   strand plot lines two_pulley_drive.jsonl -x seconds -y error --group series --loglog -o chart.png
 #include <petscsys.h>
 #include <petsctime.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -31,7 +35,16 @@ double eventSeconds(const char* name) {
   return info.time;
 }
 
+struct Case {
+  int elements;
+  double dt;
+  int points;
+  const char* law;  // "bristle" or "coulomb" (v_s = 0.1 m/s)
+  const char* integrator;  // "alpha" (generalized-alpha rho_inf 0.8) or "bdf2" (not with a free pulley yet)
+};
+
 struct Run {
+  Case c{};
   int elements = 0;
   double dt = 0, seconds = 0, contactShare = 0, newtonPerStep = 0, omega2 = 0, T[2] = {0, 0};
   int steps = 0;
@@ -40,16 +53,27 @@ struct Run {
 
 double tensionOfStretch(double lambda) { return 8000.0 * 0.5 * (lambda * lambda - 1.0) * lambda; }
 
-Run run(int elements, double dt) {
+Run run(const Case& c) {
   Run r;
-  r.elements = elements;
-  r.dt = dt;
-  solvers::Problem p(PETSC_COMM_WORLD, twoPulleyDrive(elements));
+  r.c = c;
+  r.elements = c.elements;
+  r.dt = c.dt;
+  model::SceneDescription sc = twoPulleyDrive(c.elements);
+  sc.contacts[0].points = c.points;
+  if (std::string(c.law) == "coulomb") {
+    sc.contacts[0].law.friction = contact::FrictionLaw::RegularizedCoulomb;
+    sc.contacts[0].law.slipVelocity = 0.1;
+  }
+  solvers::Problem p(PETSC_COMM_WORLD, sc);
   Vec X, V;
   PetscCallAbort(PETSC_COMM_WORLD, p.createInitialState(&X, &V));
   model::DynamicsDesc d;
   d.rhoInf = 0.8;
-  d.dt = dt;
+  if (std::string(c.integrator) == "bdf2") {
+    d.integrator = model::Integrator::Bdf;
+    d.bdfOrder = 2;
+  }
+  d.dt = c.dt;
   d.tEnd = 2.45;
   long iterations = 0;
   {
@@ -89,22 +113,26 @@ Run run(int elements, double dt) {
 int main(int argc, char** argv) {
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
   PetscCall(PetscLogDefaultBegin());
+  const std::vector<Case> cases = {
+      {25, 2e-4, 4, "bristle", "alpha"},  {50, 2e-4, 4, "bristle", "alpha"},  {100, 2e-4, 4, "bristle", "alpha"},
+      {200, 2e-4, 4, "bristle", "alpha"}, {50, 2e-4, 2, "bristle", "alpha"},  {100, 2e-4, 2, "bristle", "alpha"},
+      {50, 1e-4, 4, "bristle", "alpha"},  {100, 1e-4, 4, "bristle", "alpha"}, {100, 2e-4, 4, "coulomb", "alpha"},
+      {400, 1e-4, 4, "bristle", "alpha"}};  // BDF: refused with a free pulley (Dynamics)
   std::vector<Run> runs;
-  for (auto [n, dt] : std::vector<std::pair<int, double>>{{50, 2e-4}, {100, 2e-4}, {200, 2e-4}, {100, 1e-4}, {400, 1e-4}})
-    runs.push_back(run(n, dt));
-  const Run* finest = nullptr;
-  for (const Run& r : runs)
-    if (r.failure.empty()) finest = &r;
+  for (const Case& c : cases) runs.push_back(run(c));
+  const Run& ref = runs.back();
   for (const Run& r : runs) {
-    auto rel = [&](double a, double b) { return finest && r.failure.empty() ? std::abs(a / b - 1.0) : -1.0; };
-    std::printf("{\"case\": \"two_pulley_drive\", \"elements\": %d, \"dt\": %g, \"t_end\": 2.45, \"steps\": %d, "
-                "\"seconds\": %.3f, \"newton_per_step\": %.2f, \"contact_share\": %.3f, \"omega_driven\": %.6f, "
-                "\"T1\": %.3f, \"T2\": %.3f, \"T1_vs_finest\": %.2e, \"T2_vs_finest\": %.2e, \"omega_vs_finest\": %.2e, "
-                "\"finest\": \"%d elements, dt %g\", \"failure\": \"%s\"}\n",
-                r.elements, r.dt, r.steps, r.seconds, r.newtonPerStep, r.contactShare, r.omega2, r.T[0], r.T[1],
-                finest ? rel(r.T[0], finest->T[0]) : -1.0, finest ? rel(r.T[1], finest->T[1]) : -1.0,
-                finest ? rel(r.omega2, finest->omega2) : -1.0, finest ? finest->elements : 0, finest ? finest->dt : 0.0,
-                r.failure.c_str());
+    const bool ok = r.failure.empty() && ref.failure.empty();
+    auto rel = [&](double a, double b) { return ok ? std::abs(a / b - 1.0) : -1.0; };
+    const double e1 = rel(r.T[0], ref.T[0]), e2 = rel(r.T[1], ref.T[1]);
+    std::printf("{\"case\": \"two_pulley_drive\", \"series\": \"%s %s, %d points, dt %g\", \"elements\": %d, "
+                "\"dt\": %g, \"points\": %d, \"law\": \"%s\", \"integrator\": \"%s\", \"t_end\": 2.45, "
+                "\"steps\": %d, \"seconds\": %.3f, \"newton_per_step\": %.2f, \"contact_share\": %.3f, "
+                "\"omega_driven\": %.6f, \"T1\": %.3f, \"T2\": %.3f, \"T1_vs_reference\": %.2e, "
+                "\"T2_vs_reference\": %.2e, \"omega_vs_reference\": %.2e, \"error\": %.2e, \"failure\": \"%s\"}\n",
+                r.c.law, r.c.integrator, r.c.points, r.c.dt, r.elements, r.dt, r.c.points, r.c.law, r.c.integrator,
+                r.steps, r.seconds, r.newtonPerStep, r.contactShare, r.omega2, r.T[0], r.T[1], e1, e2,
+                rel(r.omega2, ref.omega2), ok ? std::max(e1, e2) : -1.0, r.failure.c_str());
   }
   PetscCall(PetscFinalize());
   return 0;
