@@ -81,7 +81,7 @@ int runHubBeam(MPI_Comm comm, const model::SceneDescription& scene, const std::s
   applyOptions(comm, [&] { return solver.setFromOptions(); });
 
   io::RunInfo info{scene.file, "dynamic", kVersion, 2};
-  io::BodyLayout layout{"beam", "HubBeam", 1, 1, hb->deformationSize(), kSamples};
+  io::BodyLayout layout{"beam", "HubBeam", 1, 1, hb->deformationSize(), kSamples, {}};
   io::OutputWriter writer(comm, out, info, {layout});
   const std::string coupling = desc.coupling == model::HubBeamCoupling::FirstOrder ? "first_order" : "zero_order";
   writer.setAttribute("discretization", hb->basis().name());

@@ -203,30 +203,20 @@ private:
     _writer->writeFrame(time, frames);
   }
 
-  // What the contact law finds at every contact point, per element, on rank 0 (null elsewhere).
+  // What the contact law finds at this rank's contact points, per element, reduced onto rank 0
+  // (pressures summed, the largest state; null elsewhere).
   std::unique_ptr<io::ElementContact> gatherContact(Vec X, Vec V, double t) {
     std::vector<assembly::Assembler::ContactPointOut> points;
     PetscCallAbort(_comm, _problem.assembler().contactPoints(X, V, t, points));
-    std::vector<double> mine;  // body, element, points per element, pressure, touching, sticking
-    const model::Model& m = _problem.model();
-    for (const auto& pt : points) {
-      int perElement = 4;
-      for (const model::PulleyContactSet& c : m.contacts())
-        if (c.body == pt.body) perElement = c.points;
-      mine.insert(mine.end(), {double(pt.body), double(pt.element), double(perElement), pt.state.pressure,
-                               pt.state.touching ? 1.0 : 0.0, pt.state.sticking ? 1.0 : 0.0});
+    auto out = std::make_unique<io::ElementContact>(_problem.model());
+    for (const auto& pt : points) out->add(pt.body, pt.element, pt.state.pressure, pt.state.touching, pt.state.sticking);
+    for (size_t b = 0; b < out->pressure.size(); ++b) {
+      if (out->points[b] == 0) continue;
+      for (auto [field, op] : {std::pair{&out->pressure[b], MPI_SUM}, std::pair{&out->state[b], MPI_MAX}})
+        MPI_Reduce(_rank == 0 ? MPI_IN_PLACE : field->data(), field->data(), static_cast<int>(field->size()),
+                   MPI_DOUBLE, op, 0, _comm);
     }
-    int count = static_cast<int>(mine.size()), size = commSize();
-    std::vector<int> counts(size), offsets(size, 0);
-    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, _comm);
-    for (int r = 1; r < size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-    std::vector<double> all(_rank == 0 ? static_cast<size_t>(offsets[size - 1] + counts[size - 1]) : 0);
-    MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0, _comm);
-    if (_rank != 0) return nullptr;
-    auto out = std::make_unique<io::ElementContact>(m);
-    for (size_t i = 0; i + 5 < all.size(); i += 6)
-      out->add(static_cast<int>(all[i]), static_cast<int>(all[i + 1]), static_cast<int>(all[i + 2]), all[i + 3],
-               all[i + 4] != 0.0, all[i + 5] != 0.0);
+    if (_rank != 0) out.reset();
     return out;
   }
 

@@ -355,15 +355,15 @@ int PulleyContacts::settle(const double* x, const double* v, double t, bool rele
                                       size_t h, const double* rg, const double* vg) {
     if (set.law.friction != contact::FrictionLaw::Bristle) return;
     double f[2], dr[4], dv[4], dw[2];
-    contact::BristleHistory free = {_z[h], t - _tn, 0};  // the law's own state
+    const contact::BristleHistory free = {_z[h], t - _tn, 0};  // none held: the law's own state
     const contact::ContactPoint c = contact::pointTangent(set.law, pulleys[p], rg, vg, f, dr, dv, dw, &free);
     if (!c.touching) return;
-    const double trial = -set.law.tangentialStiffness * (free.z + free.dt * c.slip), limit = set.law.mu * c.pressure;
-    state[h] = static_cast<signed char>(contact::bristleState(trial, limit));
+    const double limit = set.law.mu * c.pressure;
+    state[h] = static_cast<signed char>(c.sticking ? 1 : (c.friction > 0.0 ? 2 : 3));  // the law's own
     if (_state[h] == 0 || _state[h] == state[h]) return;
     // a point whose held state's force is within kSettleTolerance mu p of the law's keeps it: at
     // the cone's edge the two states give the same solution, and flipping it would cycle
-    const double held = _state[h] == 1 ? trial : (_state[h] == 2 ? limit : -limit);
+    const double held = _state[h] == 1 ? c.trial : (_state[h] == 2 ? limit : -limit);
     if (std::abs(held - c.friction) <= kSettleTolerance * limit) state[h] = _state[h];
     else ++changed;
   });

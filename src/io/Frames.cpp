@@ -12,15 +12,16 @@ bool inContact(const model::Model& model, int body) {
 }
 }  // namespace
 
-ElementContact::ElementContact(const model::Model& model) {
+ElementContact::ElementContact(const model::Model& model) : points(model.bodies().size(), 0) {
   for (const model::Body& b : model.bodies()) {
     pressure.emplace_back(b.elements, 0.0);
     state.emplace_back(b.elements, 0.0);
   }
+  for (const model::PulleyContactSet& c : model.contacts()) points[c.body] = c.points;
 }
 
-void ElementContact::add(int body, int element, int points, double p, bool touching, bool sticking) {
-  pressure[body][element] += p / points;
+void ElementContact::add(int body, int element, double p, bool touching, bool sticking) {
+  pressure[body][element] += p / points[body];
   double& s = state[body][element];
   if (touching) s = std::max(s, sticking ? 1.0 : 2.0);
 }

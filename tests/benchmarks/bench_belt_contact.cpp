@@ -40,14 +40,6 @@ model::SceneDescription beltLoop(int elements, bool friction) {
   return sc;
 }
 
-double eventSeconds(const char* name) {
-  PetscLogEvent ev;
-  PetscEventPerfInfo info;
-  PetscCallAbort(PETSC_COMM_WORLD, PetscLogEventGetId(name, &ev));
-  PetscCallAbort(PETSC_COMM_WORLD, PetscLogEventGetPerfInfo(0, ev, &info));
-  return info.time;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -75,7 +67,7 @@ int main(int argc, char** argv) {
             iterations += s.newtonIterations;
             return 0;
           };
-          const double c0 = eventSeconds("Strand:Asm:Contact");
+          const double c0 = contactSeconds();
           PetscLogDouble t0, t1;
           PetscCall(PetscTime(&t0));
           PetscCall(dyn.run(X, V, cb, &failure));
@@ -83,7 +75,7 @@ int main(int argc, char** argv) {
           const double seconds = t1 - t0;
           if (seconds < best) {
             best = seconds;
-            contactShare = (eventSeconds("Strand:Asm:Contact") - c0) / seconds;
+            contactShare = (contactSeconds() - c0) / seconds;
             newton = iterations / 20.0;
           }
         }

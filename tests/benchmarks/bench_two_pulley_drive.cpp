@@ -27,14 +27,6 @@ using namespace strand::testing;
 
 namespace {
 
-double eventSeconds(const char* name) {
-  PetscLogEvent ev;
-  PetscEventPerfInfo info;
-  PetscCallAbort(PETSC_COMM_WORLD, PetscLogEventGetId(name, &ev));
-  PetscCallAbort(PETSC_COMM_WORLD, PetscLogEventGetPerfInfo(0, ev, &info));
-  return info.time;
-}
-
 struct Case {
   int elements;
   double dt;
@@ -50,8 +42,6 @@ struct Run {
   int steps = 0;
   std::string failure;
 };
-
-double tensionOfStretch(double lambda) { return 8000.0 * 0.5 * (lambda * lambda - 1.0) * lambda; }
 
 Run run(const Case& c) {
   Run r;
@@ -84,13 +74,13 @@ Run run(const Case& c) {
       r.steps = s.step;
       return 0;
     };
-    const double c0 = eventSeconds("Strand:Asm:Contact");
+    const double c0 = contactSeconds();
     PetscLogDouble t0, t1;
     PetscCallAbort(PETSC_COMM_WORLD, PetscTime(&t0));
     PetscCallAbort(PETSC_COMM_WORLD, dyn.run(X, V, cb, &r.failure));
     PetscCallAbort(PETSC_COMM_WORLD, PetscTime(&t1));
     r.seconds = t1 - t0;
-    r.contactShare = (eventSeconds("Strand:Asm:Contact") - c0) / r.seconds;
+    r.contactShare = (contactSeconds() - c0) / r.seconds;
     r.newtonPerStep = r.steps > 0 ? double(iterations) / r.steps : 0.0;
   }
   std::vector<double> load, q;
@@ -99,10 +89,8 @@ Run run(const Case& c) {
   PetscCallAbort(PETSC_COMM_WORLD, p.assembler().gatherToRoot(X, q));
   const model::Body& b = p.model().bodies()[0];
   if (!q.empty())
-    for (int k = 0; k < 2; ++k) {  // the upper span (k = 1, N/2) is the tight one
-      const int blk = b.block(k * b.elements / 2, 1);
-      r.T[1 - k] = tensionOfStretch(std::hypot(q[2 * blk], q[2 * blk + 1]) / b.blockScale(1));
-    }
+    for (int k = 0; k < 2; ++k)  // the upper span (k = 1, N/2) is the tight one
+      r.T[1 - k] = cableTension(8000.0, nodeStretch(b, q, k * b.elements / 2));
   VecDestroy(&X);
   VecDestroy(&V);
   return r;

@@ -1,7 +1,10 @@
 // Belt scenes built in code (issue 34): a closed belt wrapped counterclockwise around two pulleys.
 #pragma once
+#include <petsclog.h>
+
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "strand/model/SceneDescription.hpp"
 #include "support/Scenes.hpp"
@@ -60,6 +63,24 @@ inline model::SceneDescription closedBelt(const BeltLoop& spec) {
   sc.supports.push_back(hold);
   sc.contacts.push_back(c);
   return sc;
+}
+
+// The cable's axial force at the stretch lambda: EA times its Green strain times the stretch.
+inline double cableTension(double EA, double lambda) { return EA * 0.5 * (lambda * lambda - 1.0) * lambda; }
+
+// The stretch |r'| at a node of a cable body from the coordinates q (model numbering; 2D).
+inline double nodeStretch(const model::Body& b, const std::vector<double>& q, int node) {
+  const int blk = b.block(node, 1);
+  return std::hypot(q[2 * blk], q[2 * blk + 1]) / b.blockScale(1);
+}
+
+// Seconds spent so far in the contact's log event (Strand:Asm:Contact), on this rank.
+inline double contactSeconds() {
+  PetscLogEvent ev;
+  PetscEventPerfInfo info;
+  PetscCallAbort(PETSC_COMM_WORLD, PetscLogEventGetId("Strand:Asm:Contact", &ev));
+  PetscCallAbort(PETSC_COMM_WORLD, PetscLogEventGetPerfInfo(0, ev, &info));
+  return info.time;
 }
 
 // The two-pulley drive of Pechstein & Gerstmayr (Multibody Syst. Dyn. 30, 2013) as set up in the

@@ -34,7 +34,7 @@ model::SceneDescription beltAtRest(double stretch, int elements) {
   return closedBelt(spec);
 }
 
-double tensionOfStretch(double lambda) { return kEA * 0.5 * (lambda * lambda - 1.0) * lambda; }
+double tensionOfStretch(double lambda) { return cableTension(kEA, lambda); }
 
 }  // namespace
 
@@ -80,8 +80,8 @@ TEST(BeltAtRest, PretensionIsUniformAndPressesWithTOverR) {
   const model::Body& b = p.model().bodies()[0];
   double interior = 0.0, onset = 0.0;
   for (int n = 0; n < b.elements; ++n) {
-    const int blk = b.block(n, 1), pos = b.posBlock[n];
-    const double t = tensionOfStretch(std::hypot(q[2 * blk], q[2 * blk + 1]) / b.blockScale(1));
+    const int pos = b.posBlock[n];
+    const double t = tensionOfStretch(nodeStretch(b, q, n));
     const double x = q[2 * pos], y = q[2 * pos + 1];
     double near = 1e300;
     for (double cx : {0.0, kD})

@@ -55,8 +55,6 @@ struct Steady {
   double energyStart = 0, energyEnd = 0, loadWork = 0;  // the balance E at t = 0.05 s and the end; the work done
 };
 
-double tensionOfStretch(double lambda) { return kEA * 0.5 * (lambda * lambda - 1.0) * lambda; }
-
 Steady runDrive(int elements, double kt, double dt, double tEnd) {
   MPI_Comm comm = PETSC_COMM_WORLD;
   const model::SceneDescription sc = twoPulleyDrive(elements, kt);
@@ -115,9 +113,8 @@ Steady runDrive(int elements, double kt, double dt, double tEnd) {
   MPI_Bcast(q.data(), static_cast<int>(q.size()), MPI_DOUBLE, 0, comm);
   const model::Body& b = p.model().bodies()[0];
   for (int k = 0; k < 2; ++k) {  // node 0: the middle of the lower span; N/2: of the upper one
-    const int blk = b.block(k * b.elements / 2, 1);
-    s.lambda[k] = std::hypot(q[2 * blk], q[2 * blk + 1]) / b.blockScale(1);
-    s.T[k] = tensionOfStretch(s.lambda[k]);
+    s.lambda[k] = nodeStretch(b, q, k * b.elements / 2);
+    s.T[k] = cableTension(kEA, s.lambda[k]);
   }
   VecDestroy(&X);
   VecDestroy(&V);

@@ -84,6 +84,7 @@ struct ContactPoint {
   double pressure = 0.0;  // p [N/m]
   double slip = 0.0;      // s [m/s]
   double friction = 0.0;  // f_t [N/m]
+  double trial = 0.0;     // bristle: the trial force -k_t (z_n + dt s) [N/m]
 };
 
 namespace detail {
@@ -111,6 +112,7 @@ S frictionForce(const ContactLaw& law, const S& p, const S& s, const BristleHist
 struct FrictionTangent {
   double ft = 0.0, fp = 0.0, fs = 0.0;
   bool sticking = false;
+  double trial = 0.0;  // bristle: f_trial
 };
 inline FrictionTangent frictionTangent(const ContactLaw& law, double p, double s, const BristleHistory* h) {
   FrictionTangent out;
@@ -128,10 +130,10 @@ inline FrictionTangent frictionTangent(const ContactLaw& law, double p, double s
       const double trial = -law.tangentialStiffness * (hh.z + hh.dt * s);
       const int state = hh.state && p > 0.0 ? hh.state : bristleState(trial, law.mu * p);
       if (state == 1) {
-        out = {trial, 0.0, -law.tangentialStiffness * hh.dt, p > 0.0};
+        out = {trial, 0.0, -law.tangentialStiffness * hh.dt, p > 0.0, trial};
       } else {
         const double sign = state == 2 ? 1.0 : -1.0;
-        out = {sign * law.mu * p, sign * law.mu, 0.0, false};
+        out = {sign * law.mu * p, sign * law.mu, 0.0, false, trial};
       }
       break;
     }
@@ -187,7 +189,7 @@ inline ContactPoint pointTangent(const ContactLaw& law, const PulleyState& pl, c
   const double s = t[0] * u[0] + t[1] * u[1] - pl.omega * rho;
   const detail::FrictionTangent fr = detail::frictionTangent(law, p, s, h);
   const double ft = fr.ft;
-  out = {p > 0.0, true, p > 0.0 && fr.sticking, p, s, ft};
+  out = {p > 0.0, true, p > 0.0 && fr.sticking, p, s, ft, fr.trial};
   for (int i = 0; i < 2; ++i) f[i] = p * n[i] + ft * t[i];
 
   double P[4], EP[4];  // P = I - n n^T, E P (E = [[0, -1], [1, 0]])

@@ -14,13 +14,14 @@ namespace strand::io {
 // contact_state (0 off the pulleys, 1 touching and sticking, 2 a point of the element slipping).
 std::vector<BodyLayout> bodyLayouts(const model::Model& model, int samplesPerElement);
 
-// Per body and element, what the contact law found (ElementContact::add gathers it): the fields
-// contact_pressure and contact_state of the frame.
+// Per body and element, what the contact law found (ElementContact::add collects it; sum the
+// pressures and take the largest state over ranks): the fields contact_pressure and contact_state.
 struct ElementContact {
   std::vector<std::vector<double>> pressure, state;  // [body][element]
+  std::vector<int> points;                            // [body]: contact points per element (0: no contact)
   explicit ElementContact(const model::Model& model);
-  // a contact point of `points` per element: its pressure, whether it touches and whether it sticks
-  void add(int body, int element, int points, double pressure, bool touching, bool sticking);
+  // a contact point: its pressure, whether it touches and whether it sticks
+  void add(int body, int element, double pressure, bool touching, bool sticking);
 };
 
 // q: full coordinate vector in model numbering (rank 0); returns one frame per body, with the
