@@ -221,20 +221,21 @@ private:
   }
 
   // /series/pulley_<name>_{fx, fy, torque, speed}: what the belts exert on each pulley (force, torque
-  // about its centre, counterclockwise) and its speed (a free pulley's from V); statics: the belt at
-  // rest, speeds at t = 0.
+  // about its centre, counterclockwise) and its speed (a free pulley's from V); a tensioner's
+  // pulley_<name>_slide, its slide displacement; statics: the belt at rest, speeds at t = 0.
   PetscErrorCode writePulleySeries(Vec X, Vec V, double t) {
     PetscFunctionBeginUser;
     const std::vector<model::PulleyDesc>& pulleys = _problem.model().pulleys();
     if (pulleys.empty()) PetscFunctionReturn(0);
-    std::vector<double> load;
+    std::vector<assembly::Assembler::PulleyLoad> load;
     PetscCall(_problem.assembler().pulleyLoads(X, V, t, load));
     for (size_t p = 0; p < pulleys.size(); ++p) {
       const std::string stem = "pulley_" + pulleys[p].name + "_";
-      PetscCallCXX(_writer->writeScalarSeries(stem + "fx", load[4 * p]));
-      PetscCallCXX(_writer->writeScalarSeries(stem + "fy", load[4 * p + 1]));
-      PetscCallCXX(_writer->writeScalarSeries(stem + "torque", load[4 * p + 2]));
-      PetscCallCXX(_writer->writeScalarSeries(stem + "speed", load[4 * p + 3]));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "fx", load[p].fx));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "fy", load[p].fy));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "torque", load[p].torque));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "speed", load[p].speed));
+      if (pulleys[p].hasSlide) PetscCallCXX(_writer->writeScalarSeries(stem + "slide", load[p].slide));
     }
     PetscFunctionReturn(0);
   }
@@ -302,6 +303,7 @@ private:
     const bool moving = _problem.model().hasPrescribedMotion();
     const bool joints = _problem.model().hasConstraints();
     const bool timedLoads = _problem.assembler().hasTimedLoads() || _problem.model().hasLoadFunction();
+    const bool contact = _problem.assembler().hasContact();
     // next dt_out time (a restart starts with the first multiple at or after its time)
     double nextOut = d.dtOut > 0.0 && !_restart.scalars.empty() ? std::ceil(_restart.scalars.at("time") / d.dtOut - 1e-9) * d.dtOut : 0.0;
     const auto& rigid = _problem.model().rigidBodies();
@@ -329,9 +331,10 @@ private:
       PetscCallCXX(_writer->writeScalarSeries("kinetic_energy", s.kinetic));
       PetscCallCXX(_writer->writeScalarSeries("strain_energy", s.strain));
       PetscCallCXX(_writer->writeScalarSeries("potential_energy", s.potential));
+      if (contact) PetscCallCXX(_writer->writeScalarSeries("contact_energy", s.contact));
       PetscCallCXX(_writer->writeScalarSeries("dissipated_work", s.dissipated));
       if (moving) PetscCallCXX(_writer->writeScalarSeries("support_work", s.supportWork));
-      if (timedLoads) PetscCallCXX(_writer->writeScalarSeries("load_work", s.loadWork));
+      if (timedLoads || contact) PetscCallCXX(_writer->writeScalarSeries("load_work", s.loadWork));
       if (joints) {
         PetscCallCXX(_writer->writeScalarSeries("constraint_position", s.constraintPosition));
         PetscCallCXX(_writer->writeScalarSeries("constraint_velocity", s.constraintVelocity));

@@ -299,7 +299,7 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal t, PetscReal 
   PetscCallCXX(_multibody->residual(x.a, _constraintScale, loadFactor, r.a));
   PetscCall(PetscLogEventBegin(evContact, 0, 0, 0, 0));
   _contacts->residual(x.a, V ? v.a : nullptr, t, r.a);
-  _contacts->pulleyResidual(V ? v.a : nullptr, r.a);  // free pulleys' rotational damping
+  _contacts->pulleyResidual(x.a, V ? v.a : nullptr, r.a);  // free pulleys' damping, tensioners' springs
   PetscCall(PetscLogEventEnd(evContact, 0, 0, 0, 0));
   PetscCall(endLocalSum(&r));
   // owned rows: nodal forces and supports
@@ -541,6 +541,7 @@ PetscErrorCode Assembler::strainEnergy(Vec X, PetscReal* U) {
   PetscCall(beginLocal(X, _xWork, &x));
   double local = 0.0;
   for (const auto& f : _families) local += f->strainEnergy(x.a);
+  local += _contacts->springEnergy(x.a);
   PetscCall(endLocal(&x));
   PetscCallMPI(MPI_Allreduce(&local, U, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
   PetscFunctionReturn(0);
@@ -609,19 +610,38 @@ PetscErrorCode Assembler::contactForce(Vec X, Vec V, PetscReal t, Vec F) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<double>& load) {
+PetscErrorCode Assembler::contactEnergy(Vec X, Vec V, PetscReal t, PetscReal* stored, PetscReal* power) {
   PetscFunctionBeginUser;
   LocalRead x, v;
   PetscCall(beginLocal(X, _xWork, &x));
   if (V) PetscCall(beginLocal(V, _vWork, &v));
-  std::vector<double> mine(4 * _model.pulleys().size(), 0.0);
+  double mine[2] = {0.0, 0.0}, all[2];
+  _contacts->energy(x.a, V ? v.a : nullptr, t, &mine[0], &mine[1]);
+  PetscCall(endLocal(&x));
+  if (V) PetscCall(endLocal(&v));
+  PetscCallMPI(MPI_Allreduce(mine, all, 2, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
+  *stored = all[0];
+  *power = all[1];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<PulleyLoad>& load) {
+  PetscFunctionBeginUser;
+  LocalRead x, v;
+  PetscCall(beginLocal(X, _xWork, &x));
+  if (V) PetscCall(beginLocal(V, _vWork, &v));
+  constexpr int stride = PulleyContacts::kLoadStride;
+  std::vector<double> mine(stride * _model.pulleys().size(), 0.0), all(mine.size(), 0.0);
   _contacts->pulleyLoads(x.a, V ? v.a : nullptr, t, mine.data());
   PetscCall(endLocal(&x));
   if (V) PetscCall(endLocal(&v));
-  load.assign(mine.size(), 0.0);
-  PetscCallMPI(MPI_Allreduce(mine.data(), load.data(), static_cast<int>(mine.size()), MPI_DOUBLE, MPI_SUM, _dofs.comm()));
-  for (size_t p = 0; p < _model.pulleys().size(); ++p)
-    if (!_model.pulleys()[p].free()) load[4 * p + 3] = _model.pulleys()[p].speed.at(t).f;
+  PetscCallMPI(MPI_Allreduce(mine.data(), all.data(), static_cast<int>(mine.size()), MPI_DOUBLE, MPI_SUM, _dofs.comm()));
+  load.assign(_model.pulleys().size(), PulleyLoad{});
+  for (size_t p = 0; p < load.size(); ++p) {
+    const double* a = &all[stride * p];
+    const model::PulleyDesc& d = _model.pulleys()[p];
+    load[p] = {a[0], a[1], a[2], d.free() ? a[3] : d.speed.at(t).f, a[4]};
+  }
   PetscFunctionReturn(0);
 }
 

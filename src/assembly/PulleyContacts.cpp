@@ -1,6 +1,7 @@
 #include "PulleyContacts.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "strand/elements/ElementKinds.hpp"
@@ -30,28 +31,27 @@ PointTorque pointTorque(const double* d, const double* f, const double* dfdr, co
   return t;
 }
 
-// The Newton (J) and damping (D) entries of an element's coupling to a free pulley's block: belt
-// rows x phi column (n x 2, its column 1 zero), phi row x belt columns (the first n of a 2 x n
-// block: the held second coordinate's row stays zero) and phi x phi.
+// The Newton (J) and damping (D) entries of an element's coupling to a free pulley's block (phi, x):
+// belt rows x (phi, x) columns (n x 2), (phi, x) rows x belt columns (2 x n) and the block's own
+// 2 x 2 (row-major). Without a slide the x row and column stay zero (x is held).
 struct PulleyCoupling {
   std::vector<double> colJ, colD, rowJ, rowD;  // n x 2 and 2 x n
-  double selfJ = 0.0, selfD = 0.0;
+  double selfJ[4] = {0, 0, 0, 0}, selfD[4] = {0, 0, 0, 0};
   void zero(size_t n) {
     for (auto* m : {&colJ, &colD, &rowJ, &rowD}) m->assign(2 * n, 0.0);
-    selfJ = selfD = 0.0;
+    for (int i = 0; i < 4; ++i) selfJ[i] = selfD[i] = 0.0;
   }
 };
 
 PetscErrorCode insertCoupling(Mat J, Mat D, int stride, const PetscInt* gb, PetscInt pg, const PulleyCoupling& c) {
   PetscFunctionBeginUser;
-  const double selfJ[4] = {c.selfJ, 0.0, 0.0, 0.0}, selfD[4] = {c.selfD, 0.0, 0.0, 0.0};
   PetscCall(MatSetValuesBlocked(J, stride, gb, 1, &pg, c.colJ.data(), ADD_VALUES));
   PetscCall(MatSetValuesBlocked(J, 1, &pg, stride, gb, c.rowJ.data(), ADD_VALUES));
-  PetscCall(MatSetValuesBlocked(J, 1, &pg, 1, &pg, selfJ, ADD_VALUES));
+  PetscCall(MatSetValuesBlocked(J, 1, &pg, 1, &pg, c.selfJ, ADD_VALUES));
   if (D) {
     PetscCall(MatSetValuesBlocked(D, stride, gb, 1, &pg, c.colD.data(), ADD_VALUES));
     PetscCall(MatSetValuesBlocked(D, 1, &pg, stride, gb, c.rowD.data(), ADD_VALUES));
-    PetscCall(MatSetValuesBlocked(D, 1, &pg, 1, &pg, selfD, ADD_VALUES));
+    PetscCall(MatSetValuesBlocked(D, 1, &pg, 1, &pg, c.selfD, ADD_VALUES));
   }
   PetscFunctionReturn(0);
 }
@@ -95,6 +95,9 @@ PulleyContacts::PulleyContacts(const model::Model& model, const model::DofMap& d
     }
   }
   for (int p = 0; p < static_cast<int>(model.pulleys().size()); ++p) {
+    const model::PulleyDesc& d = model.pulleys()[p];
+    _slide.push_back(d.hasSlide ? std::array<double, 2>{d.slide.direction[0], d.slide.direction[1]}
+                                : std::array<double, 2>{0.0, 0.0});
     const int blk = model.pulleyBlock(p);
     const PetscInt g = blk < 0 ? -1 : dofs.globalBlock()[blk];
     _pulleyGlobal.push_back(g);
@@ -103,16 +106,21 @@ PulleyContacts::PulleyContacts(const model::Model& model, const model::DofMap& d
   }
 }
 
-std::vector<contact::PulleyState> PulleyContacts::pulleysAt(double t, const double* v) const {
+std::vector<contact::PulleyState> PulleyContacts::pulleysAt(double t, const double* x, const double* v) const {
   std::vector<contact::PulleyState> out;
   for (size_t p = 0; p < _model.pulleys().size(); ++p) {
     const model::PulleyDesc& d = _model.pulleys()[p];
     contact::PulleyState s;
-    s.c[0] = d.center[0];
-    s.c[1] = d.center[1];
     s.radius = d.radius;
+    const PetscInt blk = _pulleyLocal[p];
+    const double slide = blk >= 0 ? _q0[blk * 2 + 1] + x[blk * 2 + 1] : 0.0;  // a tensioner's x
+    const double rate = blk >= 0 && v ? v[blk * 2 + 1] : 0.0;
+    for (int i = 0; i < 2; ++i) {  // c = c0 + x e, v_c = x' e
+      s.c[i] = d.center[i] + slide * _slide[p][i];
+      s.vc[i] = rate * _slide[p][i];
+    }
     if (!d.free()) s.omega = d.speed.at(t).f;
-    else if (v && _pulleyLocal[p] >= 0) s.omega = v[_pulleyLocal[p] * 2];
+    else if (v && blk >= 0) s.omega = v[blk * 2];
     out.push_back(s);
   }
   return out;
@@ -170,7 +178,7 @@ const contact::BristleHistory* PulleyContacts::historyAt(size_t h, double t, con
 
 void PulleyContacts::residual(const double* x, const double* v, double t, double* r, double scale) const {
   if (_bodies.empty()) return;
-  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, x, v);
   forEachNearPoint(x, v, pulleys, [&](const LocalBody& b, const model::PulleyContactSet& set, int k, int g, int p,
                                       size_t h, const double* rg, const double* vg) {
     double f[2];
@@ -180,9 +188,10 @@ void PulleyContacts::residual(const double* x, const double* v, double t, double
     const double* w = &b.w[static_cast<size_t>(g) * b.stride];
     for (int a = 0; a < b.stride; ++a)
       for (int i = 0; i < 2; ++i) r[lb[a] * 2 + i] -= scale * b.weight[g] * w[a] * f[i];
-    if (_pulleyLocal[p] >= 0) {  // the belt's torque on a free pulley
+    if (_pulleyLocal[p] >= 0) {  // the belt's torque on a free pulley, and its pull -f along a slide
       const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
       r[_pulleyLocal[p] * 2] -= scale * b.weight[g] * torqueOf(d, f);
+      r[_pulleyLocal[p] * 2 + 1] += scale * b.weight[g] * (f[0] * _slide[p][0] + f[1] * _slide[p][1]);
     }
   });
 }
@@ -191,7 +200,7 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
                                         const std::vector<char>& fixed) const {
   PetscFunctionBeginUser;
   if (_bodies.empty()) PetscFunctionReturn(0);
-  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, x, v);
   std::vector<double> Kj, Kd;
   std::vector<PulleyCoupling> coupling(pulleys.size());  // per free pulley, this element's entries
   std::vector<char> near(pulleys.size(), 0);
@@ -235,17 +244,42 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
           PulleyCoupling& cp = coupling[p];
           const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
           const PointTorque tq = pointTorque(d, f, dr, dv, dw);
+          // the slide: c = c0 + x e moves d = r - c by -x e and u = v - v_c by -x' e, so
+          // df/dx = -df/dd e, df/dx' = -df/du e; the slide's generalized force is Q_x = -f.e
+          const double* e = _slide[p].data();
+          double dre[2], dve[2], edr[2], edv[2];  // df/dd e, df/du e, e^T df/dd, e^T df/du
+          for (int i = 0; i < 2; ++i) {
+            dre[i] = dr[i * 2] * e[0] + dr[i * 2 + 1] * e[1];
+            dve[i] = dv[i * 2] * e[0] + dv[i * 2 + 1] * e[1];
+            edr[i] = e[0] * dr[i] + e[1] * dr[2 + i];
+            edv[i] = e[0] * dv[i] + e[1] * dv[2 + i];
+          }
+          const size_t n2 = static_cast<size_t>(n);
           for (int a = 0; a < b.stride; ++a)
             for (int i = 0; i < 2; ++i) {
-              // belt row (a, i), phi column: -dQ/domega (a velocity)
-              cp.colJ[static_cast<size_t>(a * 2 + i) * 2] -= W * w[a] * shiftV * dw[i];
-              cp.colD[static_cast<size_t>(a * 2 + i) * 2] -= W * w[a] * dw[i];
-              // phi row, belt column (a, i): -dtau/dq - shiftV dtau/dv
+              const size_t row = static_cast<size_t>(a * 2 + i) * 2;
+              // belt row (a, i), phi column: -dQ/domega (a velocity); x column: -dQ/dx - shiftV dQ/dx'
+              cp.colJ[row] -= W * w[a] * shiftV * dw[i];
+              cp.colD[row] -= W * w[a] * dw[i];
+              cp.colJ[row + 1] += W * w[a] * (dre[i] + shiftV * dve[i]);
+              cp.colD[row + 1] += W * w[a] * dve[i];
+              // phi row, belt column (a, i): -dtau/dq - shiftV dtau/dv; x row: -dQ_x/dq - shiftV dQ_x/dv
               cp.rowJ[a * 2 + i] -= W * w[a] * (tq.dr[i] + shiftV * tq.dv[i]);
               cp.rowD[a * 2 + i] -= W * w[a] * tq.dv[i];
+              cp.rowJ[n2 + a * 2 + i] += W * w[a] * (edr[i] + shiftV * edv[i]);
+              cp.rowD[n2 + a * 2 + i] += W * w[a] * edv[i];
             }
-          cp.selfJ -= W * shiftV * tq.domega;
-          cp.selfD -= W * tq.domega;
+          const double tqe = tq.dr[0] * e[0] + tq.dr[1] * e[1], tqve = tq.dv[0] * e[0] + tq.dv[1] * e[1];
+          const double edw = e[0] * dw[0] + e[1] * dw[1];
+          const double ere = e[0] * dre[0] + e[1] * dre[1], eve = e[0] * dve[0] + e[1] * dve[1];
+          cp.selfJ[0] -= W * shiftV * tq.domega;  // (phi, phi)
+          cp.selfD[0] -= W * tq.domega;
+          cp.selfJ[1] += W * (tqe + shiftV * tqve);  // (phi, x): dtau/dx = -dtau/dd e
+          cp.selfD[1] += W * tqve;
+          cp.selfJ[2] += W * shiftV * edw;  // (x, phi): dQ_x/domega = -e.df/domega
+          cp.selfD[2] += W * edw;
+          cp.selfJ[3] -= W * (ere + shiftV * eve);  // (x, x): dQ_x/dx = e^T df/dd e
+          cp.selfD[3] -= W * eve;
         }
       }
       const PetscInt* lb = b.group->localBlocksOf(b.elements[k]);
@@ -264,7 +298,8 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
         if (_pulleyLocal[p] < 0) continue;
         PulleyCoupling& cp = coupling[p];
         for (int a = 0; a < n; ++a)
-          if (isFixed(a)) cp.colJ[a * 2] = cp.colD[a * 2] = cp.rowJ[a] = cp.rowD[a] = 0.0;
+          if (isFixed(a))
+            for (int c = 0; c < 2; ++c) cp.colJ[a * 2 + c] = cp.colD[a * 2 + c] = cp.rowJ[c * n + a] = cp.rowD[c * n + a] = 0.0;
         PetscCall(insertCoupling(J, D, b.stride, gb, _pulleyGlobal[p], cp));
       }
     }
@@ -272,9 +307,13 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
   PetscFunctionReturn(0);
 }
 
-void PulleyContacts::pulleyResidual(const double* v, double* r) const {
-  if (!v) return;
-  for (int p : _ownedFree) r[_pulleyLocal[p] * 2] += _model.pulleys()[p].damping * v[_pulleyLocal[p] * 2];
+void PulleyContacts::pulleyResidual(const double* x, const double* v, double* r) const {
+  for (int p : _ownedFree) {
+    const model::PulleyDesc& d = _model.pulleys()[p];
+    const PetscInt at = _pulleyLocal[p] * 2;
+    if (v) r[at] += d.damping * v[at];
+    if (d.hasSlide) r[at + 1] += d.slide.stiffness * (_q0[at + 1] + x[at + 1]) + (v ? d.slide.damping * v[at + 1] : 0.0);
+  }
 }
 
 PetscErrorCode PulleyContacts::pulleyMatrices(double shiftV, double shiftA, Mat J, Mat D) const {
@@ -284,6 +323,10 @@ PetscErrorCode PulleyContacts::pulleyMatrices(double shiftV, double shiftA, Mat 
     const PetscInt g = _pulleyGlobal[p] * 2;
     if (J) PetscCall(MatSetValue(J, g, g, shiftV * d.damping + shiftA * d.inertia, ADD_VALUES));
     if (D) PetscCall(MatSetValue(D, g, g, d.damping, ADD_VALUES));
+    if (!d.hasSlide) continue;
+    const model::SlideDesc& s = d.slide;
+    if (J) PetscCall(MatSetValue(J, g + 1, g + 1, s.stiffness + shiftV * s.damping + shiftA * s.mass, ADD_VALUES));
+    if (D) PetscCall(MatSetValue(D, g + 1, g + 1, s.damping, ADD_VALUES));
   }
   PetscFunctionReturn(0);
 }
@@ -291,30 +334,46 @@ PetscErrorCode PulleyContacts::pulleyMatrices(double shiftV, double shiftA, Mat 
 PetscErrorCode PulleyContacts::mass(Mat M) const {
   PetscFunctionBeginUser;
   for (int p : _ownedFree) {
+    const model::PulleyDesc& d = _model.pulleys()[p];
     const PetscInt g = _pulleyGlobal[p] * 2;
-    PetscCall(MatSetValue(M, g, g, _model.pulleys()[p].inertia, ADD_VALUES));
+    PetscCall(MatSetValue(M, g, g, d.inertia, ADD_VALUES));
+    if (d.hasSlide) PetscCall(MatSetValue(M, g + 1, g + 1, d.slide.mass, ADD_VALUES));
   }
   PetscFunctionReturn(0);
 }
 
+double PulleyContacts::springEnergy(const double* x) const {
+  double U = 0.0;
+  for (int p : _ownedFree) {
+    const model::PulleyDesc& d = _model.pulleys()[p];
+    const PetscInt at = _pulleyLocal[p] * 2 + 1;
+    const double slide = _q0[at] + x[at];
+    if (d.hasSlide) U += 0.5 * d.slide.stiffness * slide * slide;
+  }
+  return U;
+}
+
 void PulleyContacts::pulleyLoads(const double* x, const double* v, double t, double* load) const {
-  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, x, v);
   forEachNearPoint(x, v, pulleys, [&](const LocalBody& b, const model::PulleyContactSet& set, int, int g, int p,
                                       size_t h, const double* rg, const double* vg) {
     double f[2];
     contact::BristleHistory buf;
     if (!contact::pointForce(set.law, pulleys[p], rg, vg, f, historyAt(h, t, &buf))) return;
     const double d[2] = {rg[0] - pulleys[p].c[0], rg[1] - pulleys[p].c[1]};
-    load[4 * p] -= b.weight[g] * f[0];
-    load[4 * p + 1] -= b.weight[g] * f[1];
-    load[4 * p + 2] += b.weight[g] * torqueOf(d, f);
+    load[kLoadStride * p] -= b.weight[g] * f[0];
+    load[kLoadStride * p + 1] -= b.weight[g] * f[1];
+    load[kLoadStride * p + 2] += b.weight[g] * torqueOf(d, f);
   });
-  for (int p : _ownedFree) load[4 * p + 3] += pulleys[p].omega;
+  for (int p : _ownedFree) {
+    load[kLoadStride * p + 3] += pulleys[p].omega;
+    load[kLoadStride * p + 4] += _q0[_pulleyLocal[p] * 2 + 1] + x[_pulleyLocal[p] * 2 + 1];
+  }
 }
 
 void PulleyContacts::points(const double* x, const double* v, double t,
                             std::vector<Assembler::ContactPointOut>& out) const {
-  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, x, v);
   forEachNearPoint(x, v, pulleys, [&](const LocalBody& b, const model::PulleyContactSet& set, int k, int g, int p,
                                       size_t h, const double* rg, const double* vg) {
     double f[2], dr[4], dv[4], dw[2];
@@ -324,9 +383,22 @@ void PulleyContacts::points(const double* x, const double* v, double t,
   });
 }
 
+void PulleyContacts::energy(const double* x, const double* v, double t, double* stored, double* power) const {
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, x, v);
+  const double still[2] = {0.0, 0.0};
+  forEachNearPoint(x, v, pulleys, [&](const LocalBody& b, const model::PulleyContactSet& set, int, int g, int p,
+                                      size_t h, const double* rg, const double* vg) {
+    contact::BristleHistory buf;
+    const contact::PointEnergy e = contact::pointEnergy(set.law, pulleys[p], rg, v ? vg : still,
+                                                        !_model.pulleys()[p].free(), historyAt(h, t, &buf));
+    *stored += b.weight[g] * e.stored;
+    *power += b.weight[g] * e.power;
+  });
+}
+
 void PulleyContacts::commit(const double* x, const double* v, double t) {
   if (_hasHistory) {
-    const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+    const std::vector<contact::PulleyState> pulleys = pulleysAt(t, x, v);
     std::vector<double> z(_z.size(), 0.0);  // off contact: relaxed
     forEachNearPoint(x, v, pulleys, [&](const LocalBody&, const model::PulleyContactSet& set, int, int, int p,
                                         size_t h, const double* rg, const double* vg) {
@@ -348,7 +420,7 @@ int PulleyContacts::settle(const double* x, const double* v, double t, bool rele
     std::fill(_state.begin(), _state.end(), 0);
     return 0;
   }
-  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, v);
+  const std::vector<contact::PulleyState> pulleys = pulleysAt(t, x, v);
   std::vector<signed char> state(_state.size(), 0);  // off contact: as the law decides when it lands
   int changed = 0;
   forEachNearPoint(x, v, pulleys, [&](const LocalBody&, const model::PulleyContactSet& set, int, int, int p,

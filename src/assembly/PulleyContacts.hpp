@@ -16,6 +16,7 @@
 #pragma once
 #include <petscmat.h>
 
+#include <array>
 #include <vector>
 
 #include "strand/assembly/Assembler.hpp"
@@ -37,15 +38,23 @@ public:
   PetscErrorCode jacobian(const double* x, const double* v, double t, double shiftV, Mat J, Mat D,
                           const std::vector<char>& fixed) const;
   // The free pulleys' own terms, on the owned ones: r += c omega (the rotational damping; v null:
-  // none); J += shiftV c + shiftA J_p, D += c (each matrix may be null).
-  void pulleyResidual(const double* v, double* r) const;
+  // none) on phi and k x + c_s x' on a tensioner's x; J += shiftV c + shiftA J_p on phi and
+  // k + shiftV c_s + shiftA m on x, D += c, c_s (each matrix may be null).
+  void pulleyResidual(const double* x, const double* v, double* r) const;
   PetscErrorCode pulleyMatrices(double shiftV, double shiftA, Mat J, Mat D) const;
-  // M += J_p on the free pulleys' phi.
+  // M += J_p on the free pulleys' phi, m on a tensioner's x.
   PetscErrorCode mass(Mat M) const;
+  // The tensioners' spring energy k x^2 / 2 on this rank's owned pulleys.
+  double springEnergy(const double* x) const;
 
-  // load[4 p .. 4 p + 3] += what this rank's contact points exert on pulley p: force x, y, the
-  // torque about its centre (counterclockwise), and (owned free pulleys) its speed.
+  // load[kLoadStride p ..] += what this rank's contact points exert on pulley p: force x, y, the
+  // torque about its centre (counterclockwise), and (owned free pulleys) its speed and slide x.
+  static constexpr int kLoadStride = 5;
   void pulleyLoads(const double* x, const double* v, double t, double* load) const;
+
+  // The contact's stored energy and the rest of its power (contact::pointEnergy) summed over this
+  // rank's points: *stored += phi, *power += P.
+  void energy(const double* x, const double* v, double t, double* stored, double* power) const;
 
   // out += what the law finds at the Gauss points of this rank's elements near a pulley (mayTouch).
   void points(const double* x, const double* v, double t, std::vector<Assembler::ContactPointOut>& out) const;
@@ -96,8 +105,9 @@ private:
                         F&& f) const;
   // r and v at Gauss point g of local element k (q0 + x; v null: zero).
   void pointState(const LocalBody& b, int k, int g, const double* x, const double* v, double* r, double* vel) const;
-  // The pulleys at time t; free ones with omega from v (null: 0).
-  std::vector<contact::PulleyState> pulleysAt(double t, const double* v) const;
+  // The pulleys at time t; free ones with omega from v (null: 0), tensioners' centres moved by
+  // their slide x (from x) at the rate x' (from v).
+  std::vector<contact::PulleyState> pulleysAt(double t, const double* x, const double* v) const;
 
   const model::Model& _model;
   const std::vector<double>& _q0;
@@ -105,6 +115,7 @@ private:
   std::vector<PetscInt> _pulleyLocal;   // per pulley: ghosted-local block of a free pulley, or -1
   std::vector<PetscInt> _pulleyGlobal;  // per pulley: global block of a free pulley, or -1
   std::vector<int> _ownedFree;          // free pulleys whose block this rank owns
+  std::vector<std::array<double, 2>> _slide;  // per pulley: a tensioner's slide direction e, or 0
   bool _hasHistory = false;             // some contact uses the bristle law
   std::vector<double> _z;               // committed deflections, per slot
   std::vector<signed char> _state;      // held stick/slip states, per slot (BristleHistory::state)

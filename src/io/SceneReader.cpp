@@ -1444,7 +1444,7 @@ private:
     if (ctx_.dim != 2) f.fail("pulleys are circles in the xy plane: only when dimension is 2 (3D belt drives are not built)");
     if (scene_.analysis == model::Analysis::Modes) f.fail("contact is not linearized for modes: use static or dynamic");
     for (const Field& item : f.items()) {
-      item.expectMap({"name", "center", "radius", "speed", "inertia", "damping", "torque"});
+      item.expectMap({"name", "center", "radius", "speed", "inertia", "damping", "torque", "slide"});
       model::PulleyDesc p;
       p.mark = item.mark();
       const Field name = item.child("name");
@@ -1467,8 +1467,24 @@ private:
           k.fail("only for a pulley free to turn (with 'inertia'); a driven pulley's motion is its 'speed'");
       if (const Field d = item.child("damping"); d.present()) p.damping = requireNonNegative(d);
       if (const Field t = item.child("torque"); t.present()) p.torque = readTimeFunction(t);
+      if (const Field slide = item.child("slide"); slide.present()) readSlide(slide, p);
       scene_.pulleys.push_back(std::move(p));
     }
+  }
+
+  // slide: {direction, mass, stiffness, damping, preload}: a tensioner (a free pulley on a
+  // spring-damper slide).
+  void readSlide(const Field& f, model::PulleyDesc& p) {
+    if (!p.free())
+      f.fail("a tensioner's pulley turns freely: give the pulley an 'inertia' (dynamics only)");
+    f.expectMap({"direction", "mass", "stiffness", "damping", "preload"});
+    p.hasSlide = true;
+    p.slide.mark = f.mark();
+    p.slide.direction = readDirection(f.child("direction"), ctx_.dim);
+    p.slide.mass = requirePositive(f.child("mass"));
+    if (const Field k = f.child("stiffness"); k.present()) p.slide.stiffness = requireNonNegative(k);
+    if (const Field c = f.child("damping"); c.present()) p.slide.damping = requireNonNegative(c);
+    if (const Field F = f.child("preload"); F.present()) p.slide.preload = readTimeFunction(F);
   }
 
   // contact: [{body, pulleys, stiffness, damping, belt_height, points,

@@ -133,16 +133,18 @@ void Model::addPulleyBlocks(Build& build) {
 }
 
 void Model::addContacts(const SceneDescription& scene) {
-  // a free pulley's block (phi, unused held): phi starts at 0 with its initial speed; the torque is
-  // a timed load on phi
+  // a free pulley's block (phi, x): phi starts at 0 with its initial speed; x, a tensioner's slide
+  // displacement, at 0 at rest (held at zero without a slide); the torque and the slide's preload
+  // are timed loads on phi and x
+  auto isZero = [](const TimeFunction& f) { return f.kind == TimeFunction::Kind::Constant && f.value == 0.0; };
   for (size_t p = 0; p < _pulleys.size(); ++p) {
     const int blk = _pulleyBlock[p];
     if (blk < 0) continue;
-    _fixed[blk * _dim + 1] = 1;
-    _v0[blk * _dim] = _pulleys[p].speed.at(0.0).f;
-    const TimeFunction& torque = _pulleys[p].torque;
-    const bool noTorque = torque.kind == TimeFunction::Kind::Constant && torque.value == 0.0;
-    if (!noTorque) _timed.push_back({torque, {blk * _dim}, {1.0}});
+    const PulleyDesc& d = _pulleys[p];
+    if (!d.hasSlide) _fixed[blk * _dim + 1] = 1;
+    _v0[blk * _dim] = d.speed.at(0.0).f;
+    if (!isZero(d.torque)) _timed.push_back({d.torque, {blk * _dim}, {1.0}});
+    if (d.hasSlide && !isZero(d.slide.preload)) _timed.push_back({d.slide.preload, {blk * _dim + 1}, {1.0}});
   }
   for (const ContactDesc& c : scene.contacts) {
     PulleyContactSet set;
@@ -189,7 +191,7 @@ bool Model::velocityDependent() const {
   for (const PulleyContactSet& c : _contacts)  // contact damping and friction depend on the belt's velocity
     if (c.law.damping > 0.0 || c.law.friction != contact::FrictionLaw::None) return true;
   for (const PulleyDesc& p : _pulleys)
-    if (p.free() && p.damping > 0.0) return true;
+    if (p.free() && (p.damping > 0.0 || (p.hasSlide && p.slide.damping > 0.0))) return true;
   return false;
 }
 

@@ -484,19 +484,17 @@ PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, P
     PetscCall(VecAXPY(_w1, -1.0, _w2));
     PetscCall(VecDot(_w1, V, damping));
   }
-  // Belt-pulley contact is an applied force: its power v . Q(X, V, t) counts as load work (driven
-  // pulleys feed the belt, friction and contact damping take energy out), and its velocity-dependent
-  // part, -v . (Q(X, V) - Q(X, 0)) in the damping power above, is taken back out of that.
-  if (_asm.hasContact()) {
+  // Belt-pulley contact: its normal penalty is stored energy (DynamicsStep::contact), the rest of
+  // its power (friction, normal damping, the driven pulleys' input; Assembler::contactEnergy) is
+  // load work, added by the caller. Its velocity-dependent part, -v . (Q(X, V) - Q(X, 0)) in the
+  // damping power above, is taken back out of that.
+  if (_asm.hasContact() && _damped) {
     PetscScalar withV = 0.0, atRest = 0.0;
     PetscCall(_asm.contactForce(X, V, t, _w1));
     PetscCall(VecDot(_w1, V, &withV));
-    *load += withV;
-    if (_damped) {
-      PetscCall(_asm.contactForce(X, nullptr, t, _w2));
-      PetscCall(VecDot(_w2, V, &atRest));
-      *damping += withV - atRest;
-    }
+    PetscCall(_asm.contactForce(X, nullptr, t, _w2));
+    PetscCall(VecDot(_w2, V, &atRest));
+    *damping += withV - atRest;
   }
   if (_moving) {
     if (_firstOrder) PetscCall(supportForceAt(t, X, V, _w1));
@@ -563,8 +561,10 @@ PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) 
   }
   PetscCall(energies(X, V, &s));
   if (_constrained) PetscCall(_asm.constraintViolation(X, V, &s.constraintPosition, &s.constraintVelocity));
-  PetscReal pd, ps, pl;
+  PetscReal pd, ps, pl, pc = 0.0;
   PetscCall(powers(t, X, V, &pd, &ps, &pl));
+  if (_asm.hasContact()) PetscCall(_asm.contactEnergy(X, V, t, &s.contact, &pc));
+  pl += pc;
   const double half = 0.5 * (t - _last.time);
   s.dissipated = step > 0 ? _last.dissipated + half * (pd + _lastDampingPower) : 0.0;
   s.supportWork = step > 0 ? _last.supportWork + half * (ps + _lastSupportPower) : 0.0;
@@ -578,7 +578,7 @@ PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) 
   // seen means the discrete solution has left the exact one for good (measured on the 20-link chain at
   // rho_inf = 1: E - E0 went from -2e-3 J to 1e11 J = T within 50 steps, without a Newton failure).
   if (step == 0) _e0 = s.energy();
-  _energyScale = std::max(_energyScale, s.kinetic + std::fabs(s.strain) + std::fabs(s.potential) +
+  _energyScale = std::max(_energyScale, s.kinetic + std::fabs(s.strain) + s.contact + std::fabs(s.potential) +
                                                         std::fabs(s.dissipated) + std::fabs(s.supportWork) +
                                                         std::fabs(s.loadWork));
   // It must persist for kBlowUpSteps steps (or be NaN/inf): in the first steps from rest every

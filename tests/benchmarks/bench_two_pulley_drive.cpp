@@ -83,9 +83,10 @@ Run run(const Case& c) {
     r.contactShare = (contactSeconds() - c0) / r.seconds;
     r.newtonPerStep = r.steps > 0 ? double(iterations) / r.steps : 0.0;
   }
-  std::vector<double> load, q;
+  std::vector<assembly::Assembler::PulleyLoad> load;
+  std::vector<double> q;
   PetscCallAbort(PETSC_COMM_WORLD, p.assembler().pulleyLoads(X, V, d.tEnd, load));
-  r.omega2 = load[7];
+  r.omega2 = load[1].speed;
   PetscCallAbort(PETSC_COMM_WORLD, p.assembler().gatherToRoot(X, q));
   const model::Body& b = p.model().bodies()[0];
   if (!q.empty())

@@ -1421,6 +1421,27 @@ TEST(SceneReader, PulleysContactAndWrapPathsAreReadAndChecked) {
                         "only for a pulley free to turn"));
   EXPECT_TRUE(failsWith(edit(dyn, "speed: -1}", "speed: {function: linear, rate: 1}, inertia: 0.3}") + dynTail, 4,
                         "pulleys[0].speed", "a free pulley's speed is its initial speed"));
+  // a tensioner: a free pulley on a spring-damper slide
+  {
+    const SceneDescription t = parseScene(
+        edit(dyn, "speed: -1}",
+             "inertia: 0.3, slide: {direction: [0, 2], mass: 1.5, stiffness: 1e4, damping: 20, preload: 300}}") + dynTail,
+        "scene.yaml");
+    ASSERT_TRUE(t.pulleys[0].hasSlide);
+    EXPECT_DOUBLE_EQ(t.pulleys[0].slide.direction[1], 1.0);  // made a unit vector
+    EXPECT_DOUBLE_EQ(t.pulleys[0].slide.mass, 1.5);
+    EXPECT_DOUBLE_EQ(t.pulleys[0].slide.stiffness, 1e4);
+    EXPECT_DOUBLE_EQ(t.pulleys[0].slide.damping, 20.0);
+    EXPECT_DOUBLE_EQ(t.pulleys[0].slide.preload.at(1.0).f, 300.0);
+    EXPECT_TRUE(failsWith(edit(dyn, "speed: -1}", "speed: -1, slide: {direction: [0, 1], mass: 1}}") + dynTail, 4,
+                          "pulleys[0].slide", "a tensioner's pulley turns freely: give the pulley an 'inertia'"));
+    EXPECT_TRUE(failsWith(edit(dyn, "speed: -1}", "inertia: 0.3, slide: {direction: [0, 0], mass: 1}}") + dynTail, 4,
+                          "pulleys[0].slide.direction", "must not be the zero vector"));
+    EXPECT_TRUE(failsWith(edit(dyn, "speed: -1}", "inertia: 0.3, slide: {direction: [0, 1]}}") + dynTail, 4,
+                          "pulleys[0].slide.mass", ""));
+    EXPECT_TRUE(failsWith(edit(dyn, "speed: -1}", "inertia: 0.3, slide: {direction: [0, 1], mass: 1, spring: 3}}") + dynTail,
+                          4, "pulleys[0].slide.spring", ""));
+  }
   // a closed belt around two pulleys, pretensioned
   const std::string two = edit(head, "speed: -1}", "speed: -1}\n  - {name: idler, center: [2, 0], radius: 0.25}");  // line 5
   const std::string loop =

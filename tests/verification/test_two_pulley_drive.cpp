@@ -79,11 +79,11 @@ Steady runDrive(int elements, double kt, double dt, double tEnd) {
     };
     PetscCallAbort(comm, dyn.run(X, V, cb, &s.failure));
   }
-  std::vector<double> load;
+  std::vector<assembly::Assembler::PulleyLoad> load;
   PetscCallAbort(comm, p.assembler().pulleyLoads(X, V, tEnd, load));
-  s.omega1 = load[3];
-  s.omega2 = load[7];
-  s.torque2 = load[6];
+  s.omega1 = load[0].speed;
+  s.omega2 = load[1].speed;
+  s.torque2 = load[1].torque;
   std::vector<assembly::Assembler::ContactPointOut> points;
   PetscCallAbort(comm, p.assembler().contactPoints(X, V, tEnd, points));
   // slipping points' angles about their pulley's centre, on the wrapped half (x < 0 for the

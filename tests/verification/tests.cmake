@@ -20,3 +20,4 @@ strand_test(NAME verify_free_modes SOURCES verification/test_free_modes.cpp LABE
 strand_test(NAME verify_capstan SOURCES verification/test_capstan.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_belt_drive SOURCES verification/test_belt_drive.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_two_pulley_drive SOURCES verification/test_two_pulley_drive.cpp LABELS verification NPROCS 1 2)
+strand_test(NAME verify_tensioner SOURCES verification/test_tensioner.cpp LABELS verification NPROCS 1 2)

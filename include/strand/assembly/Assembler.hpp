@@ -136,10 +136,17 @@ public:
   // F = Q, the contact forces on the belts (every row; V may be null: at rest). residual() holds -Q.
   bool hasContact() const { return !_model.contacts().empty(); }
   PetscErrorCode contactForce(Vec X, Vec V, PetscReal t, Vec F);
-  // What the belts exert on each pulley (Model::pulleys()): load[4 p .. 4 p + 2] = force x, y [N]
-  // and torque about its centre [N m, counterclockwise], load[4 p + 3] its speed [rad/s] (a free
-  // pulley's from V, null: 0); collective, every rank gets the sums.
-  PetscErrorCode pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<double>& load);
+  // The contact's stored energy (the normal penalty's potential) and the power of the rest of its
+  // force (friction, normal damping, driven pulleys' input): contact::pointEnergy summed over the
+  // belts (collective; V may be null).
+  PetscErrorCode contactEnergy(Vec X, Vec V, PetscReal t, PetscReal* stored, PetscReal* power);
+  // What the belts exert on each pulley (Model::pulleys()): force [N] and torque about its centre
+  // [N m, counterclockwise], its speed [rad/s] (a free pulley's from V, null: 0) and a tensioner's
+  // slide displacement [m]; collective, every rank gets the sums.
+  struct PulleyLoad {
+    double fx = 0.0, fy = 0.0, torque = 0.0, speed = 0.0, slide = 0.0;
+  };
+  PetscErrorCode pulleyLoads(Vec X, Vec V, PetscReal t, std::vector<PulleyLoad>& load);
   // The bristle friction law's history (contact::BristleHistory, docs/contact.md): dynamics
   // commits each accepted state at its time t. For checkpoints, contactHistory() gathers it to every
   // rank as 5 numbers per deflected point (body, element, pulley, Gauss point, z) and the time it

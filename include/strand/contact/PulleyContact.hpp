@@ -218,4 +218,34 @@ inline ContactPoint pointTangent(const ContactLaw& law, const PulleyState& pl, c
   return out;
 }
 
+// The contact's energy at a point (docs/contact.md, "Energy"): the normal penalty's potential
+// phi = k g^2 / 2 (g < 0), and the power of the rest of the force into the belt and a free pulley,
+//   P = (p + k g) gdot + f_t s  (+ omega rho f_t on a driven pulley: its drive's input),
+// so that the contact's whole power f . v - f . (v_c + omega e_z x d) = p gdot + f_t s = -dphi/dt + P
+// (a driven pulley's material point moves on its own: f . v = p gdot + f_t (s + omega rho)).
+// P holds the normal damping's -c gdot^2, the friction's work and the drive's: smooth in time,
+// where p gdot itself swings with the belt's radial contact mode, which the time step does not
+// resolve (the trapezoidal rule made energy out of it).
+struct PointEnergy {
+  double stored = 0.0;  // phi [J/m]
+  double power = 0.0;   // P [W/m]
+};
+inline PointEnergy pointEnergy(const ContactLaw& law, const PulleyState& pl, const double* r, const double* v,
+                               bool driven, const BristleHistory* h = nullptr) {
+  PointEnergy out;
+  const double d[2] = {r[0] - pl.c[0], r[1] - pl.c[1]};
+  const double rho = std::hypot(d[0], d[1]);
+  const double g = rho - (pl.radius + law.offset);
+  if (!(g < 0.0) || !(rho > 0.0)) return out;
+  const double n[2] = {d[0] / rho, d[1] / rho}, t[2] = {-n[1], n[0]};
+  const double u[2] = {v[0] - pl.vc[0], v[1] - pl.vc[1]};
+  const double gdot = n[0] * u[0] + n[1] * u[1];
+  const double p = std::max(-law.stiffness * g - law.damping * gdot, 0.0);
+  const double s = t[0] * u[0] + t[1] * u[1] - pl.omega * rho;
+  const double ft = p > 0.0 ? detail::frictionTangent(law, p, s, h).ft : 0.0;
+  out.stored = 0.5 * law.stiffness * g * g;
+  out.power = (p + law.stiffness * g) * gdot + ft * s + (driven ? pl.omega * rho * ft : 0.0);
+  return out;
+}
+
 }  // namespace strand::contact

@@ -187,7 +187,8 @@ public:
   double loadFactor(double t) const { return _loadFunction ? _loadFunction->at(t).f : 1.0; }
   const Vec3& gravity() const { return _gravity; }  // also acts on point masses
   // Pulleys and the bodies in contact with them. A free pulley (PulleyDesc::free) has a block of
-  // its own, (phi, an unused coordinate held at zero): pulleyBlock(p), -1 for a driven one.
+  // its own, (phi, x): its angle and a tensioner's slide displacement (held at zero without a
+  // slide): pulleyBlock(p), -1 for a driven one.
   const std::vector<PulleyDesc>& pulleys() const { return _pulleys; }
   int pulleyBlock(int p) const { return _pulleyBlock[p]; }
   const std::vector<PulleyContactSet>& contacts() const { return _contacts; }

@@ -341,6 +341,17 @@ struct HubBeamDesc {
 // turns at speed(t) [rad/s, counterclockwise; zero: a fixed drum] and has no DOFs. Free (inertia
 // J > 0; dynamics): its angle is an unknown, speed is its initial speed, and it feels the belts'
 // torque, torque(t) [N m, counterclockwise] and a rotational damping -damping * omega.
+// A tensioner: a free pulley whose centre also slides along `direction` from `center` (slide
+// displacement x, an unknown), on a spring-damper with a preload: m x'' = F(t) - k x - c x' + the
+// belts' force along the slide.
+struct SlideDesc {
+  SourceMark mark;
+  Vec3 direction{};        // unit vector in the xy plane
+  double mass = 0.0;       // m > 0 [kg]: the pulley and the slide's moving parts
+  double stiffness = 0.0;  // k [N/m]
+  double damping = 0.0;    // c [N s/m]
+  TimeFunction preload;    // F(t) [N] along direction (pushes the pulley into the belt when positive)
+};
 struct PulleyDesc {
   std::string name;
   SourceMark mark;
@@ -350,6 +361,8 @@ struct PulleyDesc {
   double inertia = 0.0;  // > 0: free to turn [kg m^2]
   double damping = 0.0;  // [N m s/rad]
   TimeFunction torque;   // [N m]
+  bool hasSlide = false; // a tensioner (free pulleys only)
+  SlideDesc slide;
   bool free() const { return inertia > 0.0; }
 };
 

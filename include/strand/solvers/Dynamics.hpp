@@ -35,7 +35,9 @@
 // P = -f_ext.u, work dissipated by Kelvin-Voigt damping W_d = int v.f_d dt (f_d = f_int(u, v) -
 // f_int(u, 0)) and work done by the supports on the body W_s = int v.f_s dt (f_s = M a + f_int -
 // f_ext on supported rows; non-zero only for moving supports) and the work of time-dependent loads
-// W_t = int v.f(t) dt, all by the trapezoidal rule. The balance E = T + U + P + W_d - W_s - W_t is
+// W_t = int v.f(t) dt, all by the trapezoidal rule. Belt-pulley contact: the normal penalty's
+// potential C is stored energy, the power of its other forces (friction, normal damping, driven
+// pulleys) is in W_t (Assembler::contactEnergy). The balance E = T + U + C + P + W_d - W_s - W_t is
 // constant for the exact motion.
 #pragma once
 #include <petscts.h>
@@ -63,9 +65,10 @@ struct DynamicsStep {
   double timeStep = 0.0;  // of the step that ended here
   bool suspect = false;   // the blow-up guard has seen energy created here (or a non-finite value)
   double kinetic = 0.0, strain = 0.0, potential = 0.0, dissipated = 0.0, supportWork = 0.0;
-  double loadWork = 0.0;  // work of the time-dependent loads, int v . f(t) dt (trapezoidal)
+  double contact = 0.0;   // belt-pulley contact: the normal penalty's stored energy
+  double loadWork = 0.0;  // work of the time-dependent loads and the contact's other forces (trapezoidal)
   double constraintPosition = 0.0, constraintVelocity = 0.0;  // max |g(q)|, max |G v| over the joints
-  double energy() const { return kinetic + strain + potential + dissipated - supportWork - loadWork; }
+  double energy() const { return kinetic + strain + contact + potential + dissipated - supportWork - loadWork; }
 };
 
 // What a checkpoint holds besides X and V, to continue a run exactly (Dynamics::saveState,

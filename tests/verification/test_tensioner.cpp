@@ -1,0 +1,274 @@
+// A tensioner: a free pulley whose centre slides on a spring-damper with a preload (issue 34;
+// docs/contact.md, "Tensioners"; docs/validation.md, "Tensioner").
+//
+// The loop: a closed frictionless belt (EA = 1e4 N, rho A = 1e-3 kg/m, EI = 1e-5 N m^2) around a
+// fixed pulley "a" at the origin and the tensioner "b" at D = 0.4 m on x, both of radius
+// R = 0.1 m, laid with the stretch lambda0 = 1.01; b slides along +x with mass m = 1 kg, spring
+// k = 1e4 N/m and preload F. Statics of the loop (closed form): both spans carry T, so
+//   F - k x = 2 T,   T = EA (lambda^2 - 1) lambda / 2,   lambda = (2 (D + x) + 2 pi rho) / L_ref,
+// with L_ref = (2 D + 2 pi R) / lambda0 and rho = R - T lambda / (rho k_c) the radius the belt sinks
+// to under the contact penalty k_c (docs/validation.md, "Belt at rest").
+//
+// requirement: with slide damping the tensioner settles where the closed form puts it: x within
+//   1e-3 and the span tension within 1e-4 (160 elements: measured 1.0e-4 and 1e-6);
+// requirement: undamped, it oscillates about that point at omega = sqrt(K / m), K = k + 2 dT/dx the
+//   loop's slide stiffness (the closed form's derivative): the period within 1e-3 (measured 5e-4;
+//   the belt's own mass, about 5e-4 of m, is left out of m); the energy balance (kinetic + strain
+//   + spring + contact penalty - the preload's work) closes, from 20 ms on, to 1e-3 of the energy
+//   moved (measured 5e-4: rho_inf = 0.8's damping of the belt's high modes);
+// requirement: the Newton matrix's couplings of the slide (belt rows x the pulley's columns, its
+//   rows x the belt's, its own 2 x 2) equal the residual's central differences, in X and in V, on a
+//   turning loop with friction (regularized Coulomb) and a moving slide;
+// requirement: -n 1 and -n 2 give the same (this test runs on both).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "strand/solvers/Dynamics.hpp"
+#include "strand/solvers/Problem.hpp"
+#include "support/Belts.hpp"
+
+using namespace strand;
+using namespace strand::testing;
+
+namespace {
+
+constexpr double kR = 0.1, kD = 0.4, kEA = 1e4, kLambda0 = 1.01, kContact = 1e8, kMass = 1.0, kSpring = 1e4;
+
+// The loop with b on its slide (preload F(t) a cosine ramp over [0, ramp], or constant at ramp 0).
+model::SceneDescription tensionedLoop(double F, double ramp, double damping, int elements = 80) {
+  BeltLoop spec;
+  spec.radius = kR;
+  spec.distance = kD;
+  spec.elements = elements;
+  spec.EA = kEA;
+  spec.stretch = kLambda0;
+  spec.stiffness = kContact;
+  model::SceneDescription sc = closedBelt(spec);
+  sc.analysis = model::Analysis::Dynamic;
+  sc.bodies[0].section.set("rho", 100.0);  // rho A = 1e-3 kg/m
+  sc.bodies[0].section.set("I", 1e-14);    // EI = 1e-5 N m^2: the spans' bending boundary layers below 1e-5 of T
+  model::PulleyDesc& b = sc.pulleys[1];
+  b.inertia = 1e-4;
+  b.hasSlide = true;
+  b.slide.direction = {1.0, 0.0, 0.0};
+  b.slide.mass = kMass;
+  b.slide.stiffness = kSpring;
+  b.slide.damping = damping;
+  b.slide.preload.value = F;
+  if (ramp > 0.0) {
+    b.slide.preload.kind = model::TimeFunction::Kind::CosineRamp;
+    b.slide.preload.start = 0.0;
+    b.slide.preload.end = ramp;
+  }
+  return sc;
+}
+
+// The closed form: the span tension at slide displacement x.
+double loopTension(double x) {
+  const double pi = std::acos(-1.0), reference = (2.0 * kD + 2.0 * pi * kR) / kLambda0;
+  double rho = kR, T = 0.0;
+  for (int it = 0; it < 60; ++it) {
+    const double lambda = (2.0 * (kD + x) + 2.0 * pi * rho) / reference;
+    T = cableTension(kEA, lambda);
+    rho = kR - T * lambda / (rho * kContact);
+  }
+  return T;
+}
+
+// Where the closed form puts the slide under the preload F (F - k x = 2 T(x), by Newton).
+double equilibrium(double F) {
+  double x = 0.0;
+  for (int it = 0; it < 50; ++it) {
+    const double h = 1e-7, g = F - kSpring * x - 2.0 * loopTension(x);
+    const double dg = -kSpring - (loopTension(x + h) - loopTension(x - h)) / h;
+    x -= g / dg;
+  }
+  return x;
+}
+
+struct SlideRun {
+  std::string failure;
+  std::vector<double> t, x;  // the slide's displacement per step
+  std::vector<solvers::DynamicsStep> steps;
+  double tension = 0.0;      // at the middle of the lower span, at the end
+};
+
+SlideRun runLoop(const model::SceneDescription& sc, double dt, double tEnd, double rhoInf) {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  model::DynamicsDesc dd;
+  dd.rhoInf = rhoInf;
+  dd.dt = dt;
+  dd.tEnd = tEnd;
+  solvers::Problem p(comm, sc);
+  Vec X, V;
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
+  SlideRun r;
+  {
+    solvers::Dynamics dyn(p.assembler(), dd);
+    PetscCallAbort(comm, dyn.setFromOptions());
+    solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec Xs, Vec Vs) -> PetscErrorCode {
+      std::vector<assembly::Assembler::PulleyLoad> load;
+      PetscCall(p.assembler().pulleyLoads(Xs, Vs, st.time, load));
+      r.t.push_back(st.time);
+      r.x.push_back(load[1].slide);
+      r.steps.push_back(st);
+      return 0;
+    };
+    PetscCallAbort(comm, dyn.run(X, V, cb, &r.failure));
+  }
+  std::vector<double> q;
+  PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
+  q.resize(p.model().numDofs());
+  MPI_Bcast(q.data(), static_cast<int>(q.size()), MPI_DOUBLE, 0, comm);
+  r.tension = cableTension(kEA, nodeStretch(p.model().bodies()[0], q, 0));
+  VecDestroy(&X);
+  VecDestroy(&V);
+  return r;
+}
+
+int rank() {
+  int r;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &r);
+  return r;
+}
+
+}  // namespace
+
+TEST(Tensioner, SettlesWhereTheLoopsStaticsPutIt) {
+  const double F = 300.0, omega = std::sqrt((kSpring + 2.8e4) / kMass);
+  // 160 elements: at 80 the wraps' discretization puts x 2.4e-3 off (the span tension still 3e-4);
+  // 160: 1.0e-4 and 1e-6, 320: 5.6e-5 and 3e-6
+  const SlideRun r = runLoop(tensionedLoop(F, 0.02, 2.0 * kMass * omega, 160), 2e-4, 0.12, 0.8);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  const double x = equilibrium(F), T = loopTension(x);
+  if (rank() == 0)
+    std::printf("tensioner at rest: x = %.6e m (closed form %.6e), T = %.5f N (%.5f; (F - k x) / 2 = %.5f)\n",
+                r.x.back(), x, r.tension, T, 0.5 * (F - kSpring * r.x.back()));
+  EXPECT_NEAR(r.x.back() / x, 1.0, 1e-3);
+  EXPECT_NEAR(r.tension / T, 1.0, 1e-4);
+}
+
+TEST(Tensioner, OscillatesAtTheLoopsSlideFrequencyAndConservesEnergy) {
+  const double F = 300.0, pi = std::acos(-1.0);
+  const SlideRun r = runLoop(tensionedLoop(F, 4e-3, 0.0), 1e-4, 0.2, 0.8);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  const double x0 = equilibrium(F), h = 1e-7;
+  const double K = kSpring + (loopTension(x0 + h) - loopTension(x0 - h)) / h;  // k + 2 dT/dx
+  const double period = 2.0 * pi * std::sqrt(kMass / K);
+  std::vector<double> up;  // upward crossings of x0, interpolated
+  for (size_t i = 1; i < r.x.size(); ++i)
+    if (r.x[i - 1] < x0 && r.x[i] >= x0) up.push_back(r.t[i - 1] + (x0 - r.x[i - 1]) / (r.x[i] - r.x[i - 1]) * (r.t[i] - r.t[i - 1]));
+  ASSERT_GE(up.size(), 4u);
+  const double measured = (up.back() - up.front()) / static_cast<double>(up.size() - 1);
+  // the balance from 20 ms on: at the start the belt, laid on the pulleys at zero gap with its
+  // pretension, sinks into them through a contact mode far beyond 1 / dt (an impact: the scheme's
+  // error, 0.065 J in the first step, damped out over about 20 ms)
+  double scale = 0.0, drift = 0.0, start = 0.0;
+  for (const solvers::DynamicsStep& st : r.steps) {
+    scale = std::max({scale, st.kinetic, std::abs(st.loadWork)});
+    if (st.time <= 0.02 + 1e-9) start = st.energy();
+    else drift = std::max(drift, std::abs(st.energy() - start));
+  }
+  if (rank() == 0)
+    std::printf("tensioner undamped: period %.7f s over %zu cycles (sqrt(m / K) closed form %.7f s, K = %.1f N/m); "
+                "energy drift %.2e J of %.3f J\n",
+                measured, up.size() - 1, period, K, drift, scale);
+  EXPECT_NEAR(measured / period, 1.0, 1e-3);
+  EXPECT_LT(drift, 1e-3 * scale);
+}
+
+// The Newton matrix at a state of a turning loop with friction, the pulley turning and the slide
+// moving: K = dR/dX (no shifts) and D = dR/dV against central differences of the residual, column
+// by column.
+TEST(Tensioner, NewtonMatrixEqualsTheResidualsDifferences) {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  model::SceneDescription sc = tensionedLoop(300.0, 0.02, 50.0);
+  sc.supports.clear();  // the loop turns with the driver
+  sc.pulleys[0].speed.value = 20.0;
+  sc.pulleys[1].damping = 1e-3;
+  sc.contacts[0].law.friction = contact::FrictionLaw::RegularizedCoulomb;
+  sc.contacts[0].law.mu = 0.3;
+  sc.contacts[0].law.slipVelocity = 0.05;
+  solvers::Problem p(comm, sc);
+  Vec X, V;
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
+  {  // a state off the initial one: displacements of 1e-5 m (the belt presses into the pulleys by
+     // up to that), velocities of 0.1 m/s, the slide at 1 mm moving at 0.05 m/s
+    PetscInt lo, hi;
+    PetscCallAbort(comm, VecGetOwnershipRange(X, &lo, &hi));
+    for (PetscInt i = lo; i < hi; ++i) {
+      PetscCallAbort(comm, VecSetValue(X, i, 1e-5 * std::sin(1.7 * i), INSERT_VALUES));
+      PetscCallAbort(comm, VecSetValue(V, i, 0.1 * std::cos(0.9 * i), INSERT_VALUES));
+    }
+    const PetscInt slide = p.dofs().globalBlock()[p.model().pulleyBlock(1)] * 2 + 1;
+    if (slide >= lo && slide < hi) {
+      PetscCallAbort(comm, VecSetValue(X, slide, 1e-3, INSERT_VALUES));
+      PetscCallAbort(comm, VecSetValue(V, slide, 0.05, INSERT_VALUES));
+      PetscCallAbort(comm, VecSetValue(V, slide - 1, 15.0, INSERT_VALUES));  // the pulley turns
+    }
+    for (Vec v : {X, V}) {
+      PetscCallAbort(comm, VecAssemblyBegin(v));
+      PetscCallAbort(comm, VecAssemblyEnd(v));
+    }
+  }
+  assembly::Assembler& a = p.assembler();
+  const double t = 0.01;
+  Mat K, D;
+  PetscCallAbort(comm, p.dofs().createMatrix(&K, "fd_"));
+  PetscCallAbort(comm, p.dofs().createMatrix(&D, "fd_"));
+  PetscCallAbort(comm, a.dynamicJacobian(X, V, t, 0.0, 0.0, K, D));
+  Vec Rp, Rm, col, W;
+  PetscCallAbort(comm, VecDuplicate(X, &Rp));
+  PetscCallAbort(comm, VecDuplicate(X, &Rm));
+  PetscCallAbort(comm, VecDuplicate(X, &col));
+  PetscCallAbort(comm, VecDuplicate(X, &W));
+  PetscInt n;
+  PetscCallAbort(comm, VecGetSize(X, &n));
+  const PetscInt pulleyDof = p.dofs().globalBlock()[p.model().pulleyBlock(1)] * 2;
+  double worst[2] = {0.0, 0.0}, worstSlide[2] = {0.0, 0.0};
+  for (int which = 0; which < 2; ++which) {  // 0: columns in X, 1: in V
+    Vec Y = which == 0 ? X : V;
+    Mat M = which == 0 ? K : D;
+    const double h = which == 0 ? 1e-8 : 1e-6;
+    PetscInt lo, hi;
+    PetscCallAbort(comm, VecGetOwnershipRange(X, &lo, &hi));
+    for (PetscInt j = 0; j < n; ++j) {
+      const bool mine = j >= lo && j < hi;  // the owner sets entry j
+      PetscCallAbort(comm, VecCopy(Y, W));
+      if (mine) PetscCallAbort(comm, VecSetValue(W, j, h, ADD_VALUES));
+      PetscCallAbort(comm, VecAssemblyBegin(W));
+      PetscCallAbort(comm, VecAssemblyEnd(W));
+      PetscCallAbort(comm, a.residual(which == 0 ? W : X, which == 0 ? V : W, t, Rp));
+      if (mine) PetscCallAbort(comm, VecSetValue(W, j, -2.0 * h, ADD_VALUES));
+      PetscCallAbort(comm, VecAssemblyBegin(W));
+      PetscCallAbort(comm, VecAssemblyEnd(W));
+      PetscCallAbort(comm, a.residual(which == 0 ? W : X, which == 0 ? V : W, t, Rm));
+      PetscCallAbort(comm, VecAXPY(Rp, -1.0, Rm));
+      PetscCallAbort(comm, VecScale(Rp, 0.5 / h));  // the difference column
+      PetscCallAbort(comm, VecSet(W, 0.0));
+      if (mine) PetscCallAbort(comm, VecSetValue(W, j, 1.0, INSERT_VALUES));
+      PetscCallAbort(comm, VecAssemblyBegin(W));
+      PetscCallAbort(comm, VecAssemblyEnd(W));
+      PetscCallAbort(comm, MatMult(M, W, col));
+      PetscReal size, err;
+      PetscCallAbort(comm, VecNorm(Rp, NORM_INFINITY, &size));
+      PetscCallAbort(comm, VecAXPY(col, -1.0, Rp));
+      PetscCallAbort(comm, VecNorm(col, NORM_INFINITY, &err));
+      const double rel = err / std::max(size, 1.0);
+      worst[which] = std::max(worst[which], rel);
+      if (j == pulleyDof || j == pulleyDof + 1) worstSlide[which] = std::max(worstSlide[which], rel);
+    }
+  }
+  // every column compared in full covers the pulley's rows too
+  if (rank() == 0)
+    std::printf("Newton matrix against differences: K %.2e (pulley columns %.2e), D %.2e (%.2e)\n", worst[0],
+                worstSlide[0], worst[1], worstSlide[1]);
+  EXPECT_LT(worst[0], 1e-5);
+  EXPECT_LT(worst[1], 1e-5);
+  for (Vec* v : {&Rp, &Rm, &col, &W, &X, &V}) VecDestroy(v);
+  MatDestroy(&K);
+  MatDestroy(&D);
+}
