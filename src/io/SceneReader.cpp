@@ -1488,7 +1488,8 @@ private:
   }
 
   // contact: [{body, pulleys, stiffness, damping, belt_height, points,
-  //            friction: {law: none | coulomb (mu, slip_velocity) | bristle (mu, stiffness)}}].
+  //            friction: {law: none | coulomb (mu, slip_velocity) | creep_rate (mu, slip_velocity)
+  //                       | bristle (mu, stiffness)}}].
   void readContacts(const Field& f) {
     if (scene_.pulleys.empty()) f.fail("contact needs pulleys: the scene has none (key 'pulleys')");
     for (const Field& item : f.items()) {
@@ -1526,9 +1527,9 @@ private:
         };
         if (law == "none") {
           unused({"mu", "slip_velocity", "stiffness"});
-        } else if (law == "coulomb") {
+        } else if (law == "coulomb" || law == "creep_rate") {
           unused({"stiffness"});
-          c.law.friction = contact::FrictionLaw::RegularizedCoulomb;
+          c.law.friction = law == "coulomb" ? contact::FrictionLaw::RegularizedCoulomb : contact::FrictionLaw::CreepRate;
           c.law.mu = requireNonNegative(fr.child("mu"));
           if (const Field v = fr.child("slip_velocity"); v.present()) c.law.slipVelocity = requirePositive(v);
         } else if (law == "bristle") {
@@ -1540,7 +1541,7 @@ private:
           c.law.tangentialStiffness = c.law.stiffness;  // default: the normal penalty's
           if (const Field k = fr.child("stiffness"); k.present()) c.law.tangentialStiffness = requirePositive(k);
         } else {
-          fr.child("law").fail("unknown friction law '" + printable(law) + "'; allowed: none, coulomb, bristle");
+          fr.child("law").fail("unknown friction law '" + printable(law) + "'; allowed: none, coulomb, creep_rate, bristle");
         }
       }
       scene_.contacts.push_back(std::move(c));

@@ -2,7 +2,8 @@
 //
 // requirement: the hand-derived tangents df/dr, df/dv equal the dual-number derivatives of the
 //   force, and df/domega its central difference, in every regime (frictionless, damped, sticking
-//   creep, sliding, a moving and turning pulley, the bristle law sticking and slipping);
+//   creep, sliding, a moving and turning pulley, the creep-rate law creeping and sliding, the
+//   bristle law sticking and slipping);
 // requirement: the law's kinematics: no force off the pulley; the normal force k |g| along the
 //   outward normal; no friction when the belt point moves with the pulley's material point;
 //   friction mu p against the slip once |s| >> v_s; the bristle law holds a sticking point with
@@ -68,6 +69,10 @@ std::vector<Case> cases() {
       {"sliding", law(0.0, FrictionLaw::RegularizedCoulomb, 0.3, 1e-3), pulley(-5.0), {r[0], r[1]}, {0.1, 0.05}},
       {"moving pulley", law(10.0, FrictionLaw::RegularizedCoulomb, 0.4, 5e-2), pulley(1.5, 0.2, -0.3),
        {r[0], r[1]}, {0.25, -0.28}},
+      {"creep-rate law creeping", law(40.0, FrictionLaw::CreepRate, 0.5, 1e-2), pulley(2.0), {r[0], r[1]},
+       {-2.0 * rho * std::sin(a) + 0.003, 2.0 * rho * std::cos(a) - 0.002}},
+      {"creep-rate law sliding", law(10.0, FrictionLaw::CreepRate, 0.4, 1e-2), pulley(1.5, 0.2, -0.3), {r[0], r[1]},
+       {0.25, -0.28}},
       // p = 150 N/m, mu p = 75 N/m, k_t = 1e6 N/m^2: trial -k_t (z + dt s) = -30 (stick), -150 (slip)
       {"bristle stick", bristle(20.0, 0.5), pulley(2.0), {r[0], r[1]},
        {-2.0 * rho * std::sin(a) + 0.01 * -std::sin(a), 2.0 * rho * std::cos(a) + 0.01 * std::cos(a)}, {2e-5, 1e-3}},
@@ -148,6 +153,25 @@ TEST(PulleyContact, FrictionFollowsTheSlipOfTheMaterialPoints) {
   EXPECT_NEAR(pt.slip, 0.1, 1e-14);
   EXPECT_NEAR(pt.friction, -0.4 * k, 1e-12 * k);
   EXPECT_NEAR(f[0] * t[0] + f[1] * t[1], -0.4 * k, 1e-9 * k);
+}
+
+// The creep-rate law (Leamy & Wasfy 2002): friction mu p s / v_s against the slip up to v_s, mu p
+// beyond, continuous at v_s.
+TEST(PulleyContact, CreepRateLawIsLinearInTheCreepAndCoulombBeyond) {
+  const ContactLaw l = law(0.0, FrictionLaw::CreepRate, 0.4, 0.02);
+  const PulleyState p = pulley(0.0);
+  const double a = 1.1, rho = 0.1015;  // p = k 0.5e-3 = 150 N/m
+  const double r[2] = {0.3 + rho * std::cos(a), -0.1 + rho * std::sin(a)};
+  const double t[2] = {-std::sin(a), std::cos(a)};
+  double f[2], dr[4], dv[4], dw[2];
+  for (double s : {-0.05, -0.02, -0.005, 0.0, 0.01, 0.02 * (1.0 - 1e-12), 0.02, 0.3}) {
+    const double v[2] = {s * t[0], s * t[1]};
+    const contact::ContactPoint pt = contact::pointTangent(l, p, r, v, f, dr, dv, dw);
+    const double expected = -0.4 * 150.0 * std::max(-1.0, std::min(1.0, s / 0.02));
+    EXPECT_NEAR(pt.pressure, 150.0, 1e-9);
+    EXPECT_NEAR(pt.friction, expected, 1e-9) << "s " << s;
+    EXPECT_EQ(pt.sticking, std::abs(s) <= 0.02) << "s " << s;
+  }
 }
 
 TEST(PulleyContact, BristleSticksWithoutCreepAndSlidesAtMuP) {

@@ -1377,7 +1377,14 @@ TEST(SceneReader, PulleysContactAndWrapPathsAreReadAndChecked) {
                         "no tangent line from start to around[0]"));
   EXPECT_TRUE(failsWith(head + wrap, 3, "pulleys", "pulleys act through contact"));
   EXPECT_TRUE(failsWith(head + wrap + edit(contact, "law: coulomb, mu: 0.4", "law: stribeck"), 12, "contact[0].friction.law",
-                        "unknown friction law 'stribeck'; allowed: none, coulomb, bristle"));
+                        "unknown friction law 'stribeck'; allowed: none, coulomb, creep_rate, bristle"));
+  {
+    const SceneDescription cr =
+        parseScene(head + wrap + edit(contact, "law: coulomb, mu: 0.4", "law: creep_rate, mu: 0.4, slip_velocity: 0.02"),
+                   "scene.yaml");
+    EXPECT_EQ(cr.contacts[0].law.friction, strand::contact::FrictionLaw::CreepRate);
+    EXPECT_DOUBLE_EQ(cr.contacts[0].law.slipVelocity, 0.02);
+  }
   EXPECT_TRUE(failsWith(head + wrap + edit(contact, "law: coulomb, mu: 0.4", "law: bristle, mu: 0.4"), 12,
                         "contact[0].friction.law", "it needs a dynamic analysis"));
   EXPECT_TRUE(failsWith(head + wrap + edit(contact, "law: coulomb, mu: 0.4", "law: coulomb, mu: 0.4, stiffness: 1e6"), 12,

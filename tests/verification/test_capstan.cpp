@@ -170,6 +170,31 @@ TEST(Capstan, PinnedEndHoldsT2TimesExpOfMuTheta) {
       }
 }
 
+// The tri-linear creep-rate law of Leamy & Wasfy (2002): sliding (|s| = omega r = 0.5 m/s beyond
+// v_s = 1e-3 m/s) it is Coulomb's, T2 e^{mu theta}; creeping (v_s = 1, 2 m/s: the rope at rest, the
+// drum's surface moving under it at s = omega rho everywhere) its friction mu p s / v_s is Coulomb's
+// with mu_eff = mu omega rho / v_s, so T1 = T2 e^{mu_eff theta} (rho = r less the rope's sinking,
+// 1e-4 of r).
+TEST(Capstan, CreepRateLawHoldsEulerEytelweinWithItsCreepFriction) {
+  const double pi = std::acos(-1.0), mu = 0.5;
+  for (double vs : {1e-3, 1.0, 2.0}) {
+    Capstan c = capstan(pi, mu, -1.0, 0.05);
+    c.scene.contacts[0].law.friction = contact::FrictionLaw::CreepRate;
+    c.scene.contacts[0].law.slipVelocity = vs;
+    solvers::Problem p(PETSC_COMM_WORLD, c.scene);
+    const Solved s = solve(p, 4);
+    ASSERT_TRUE(s.failure.empty()) << s.failure;
+    const double muEff = mu * std::min(1.0, 1.0 * kR / vs), exact = kT2 * std::exp(muEff * pi);
+    const double T1 = tensionAt(p, s.q, 0);
+    int rank;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    if (rank == 0)
+      std::printf("capstan, creep-rate law, v_s = %g m/s: T1 = %.4f N, T2 exp(mu_eff pi) = %.4f N (mu_eff %.3f), error %.2e\n",
+                  vs, T1, exact, muEff, T1 / exact - 1.0);
+    EXPECT_NEAR(T1 / exact, 1.0, 1e-3) << "v_s " << vs;
+  }
+}
+
 // Two errors: the elements' (h) and the penalty's (the rope sinks T / (r k) into the drum and lies
 // on a spiral whose radius falls as T grows, so the pressure has a share along the rope: O(1/k)).
 // Measured (theta = pi, mu = 0.5): at k = 1e6 N/m^2 the error is 7.3e-4 .. 8.1e-4 for h = 0.2 ..

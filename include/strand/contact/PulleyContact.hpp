@@ -15,6 +15,9 @@
 //   none                  f_t = 0
 //   regularized Coulomb   f_t = -mu p tanh(s / v_s)  (|f_t| -> mu p for |s| >> v_s; "stick" is a
 //                         creep |s| < v_s whose force grows with it)
+//   creep rate            the tri-linear law of Leamy & Wasfy (ASME J. Appl. Mech. 69, 2002):
+//                         f_t = -mu p s / v_s for |s| <= v_s (creep: friction proportional to the
+//                         creep rate), -mu p sign(s) beyond (Coulomb sliding)
 //   bristle (elastic stick, the return mapping of elastoplasticity applied to the tangential
 //   deflection z of the contact point, dz/dt = s, integrated by backward Euler over the time dt
 //   since the last accepted step, whose deflection is z_n):
@@ -32,7 +35,8 @@
 //   df/dd = n dp/dd + p P / rho + t df_t/dd + f_t E P / rho,   df_t/dd = f_p dp/dd + f_s ds/dd,
 //   df/du = n dp/du + t df_t/du,   df_t/du = f_p dp/du + f_s t^T,   df/domega = -f_s rho t,
 // with the law's partials f_p = df_t/dp, f_s = df_t/ds (regularized Coulomb: f_p = -mu phi,
-// f_s = -mu p phi').
+// f_s = -mu p phi'; creep rate: f_p = -mu s / v_s, f_s = -mu p / v_s in creep, f_p = -mu sign(s),
+// f_s = 0 sliding).
 // d = r - c and u = v - v_c: derivatives in the belt's r and v are those in d and u, in the pulley's
 // c and v_c their negatives.
 #pragma once
@@ -43,14 +47,14 @@
 
 namespace strand::contact {
 
-enum class FrictionLaw { None, RegularizedCoulomb, Bristle };
+enum class FrictionLaw { None, RegularizedCoulomb, CreepRate, Bristle };
 
 struct ContactLaw {
   double stiffness = 0.0;     // k: normal penalty per unit reference length of belt [N/m^2]
   double damping = 0.0;       // c: normal damping [N s/m^2]
   FrictionLaw friction = FrictionLaw::None;
   double mu = 0.0;            // Coulomb coefficient
-  double slipVelocity = 1e-3; // v_s: the regularization [m/s]
+  double slipVelocity = 1e-3; // v_s: the regularization, the creep law's creep limit [m/s]
   double tangentialStiffness = 0.0;  // k_t: the bristle's stiffness per unit reference length [N/m^2]
   double offset = 0.0;        // the belt's contact surface from its centerline (h/2) [m]
 };
@@ -80,7 +84,7 @@ inline int bristleState(double trial, double limit) { return std::fabs(trial) <=
 struct ContactPoint {
   bool touching = false;  // p > 0
   bool closed = false;    // the tangents are those of a closed contact (touching, or at the surface)
-  bool sticking = false;  // bristle: inside the friction cone; regularized Coulomb: |s| < v_s
+  bool sticking = false;  // bristle: inside the friction cone; regularized Coulomb, creep rate: |s| < v_s
   double pressure = 0.0;  // p [N/m]
   double slip = 0.0;      // s [m/s]
   double friction = 0.0;  // f_t [N/m]
@@ -96,6 +100,9 @@ S frictionForce(const ContactLaw& law, const S& p, const S& s, const BristleHist
   switch (law.friction) {
     case FrictionLaw::None: return S(0.0);
     case FrictionLaw::RegularizedCoulomb: return -law.mu * p * tanh(s / law.slipVelocity);
+    case FrictionLaw::CreepRate:
+      if (std::fabs(math::value(s)) <= law.slipVelocity) return -law.mu * p * s / law.slipVelocity;
+      return math::value(s) > 0.0 ? -law.mu * p : law.mu * p;
     case FrictionLaw::Bristle: {
       const BristleHistory none;
       const BristleHistory& hh = h ? *h : none;
@@ -122,6 +129,16 @@ inline FrictionTangent frictionTangent(const ContactLaw& law, double p, double s
       const double phi = std::tanh(s / law.slipVelocity);
       out = {-law.mu * p * phi, -law.mu * phi, -law.mu * p * (1.0 - phi * phi) / law.slipVelocity,
              std::fabs(s) < law.slipVelocity};
+      break;
+    }
+    case FrictionLaw::CreepRate: {
+      const double vs = law.slipVelocity;
+      if (std::fabs(s) <= vs) {
+        out = {-law.mu * p * s / vs, -law.mu * s / vs, -law.mu * p / vs, true};
+      } else {
+        const double sign = s > 0.0 ? 1.0 : -1.0;
+        out = {-sign * law.mu * p, -sign * law.mu, 0.0, false};
+      }
       break;
     }
     case FrictionLaw::Bristle: {
