@@ -211,7 +211,7 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
     for (int k = 0; k < static_cast<int>(b.elements.size()); ++k) {
       bool touching = false, nearAny = false;
       for (int p : set.pulleys) nearAny |= (near[p] = mayTouch(b, k, x, pulleys[p], set.law));
-      if (nearAny) {
+      if (nearAny || D) {
         Kj.assign(static_cast<size_t>(n) * n, 0.0);
         Kd.assign(static_cast<size_t>(n) * n, 0.0);
       }
@@ -290,8 +290,11 @@ PetscErrorCode PulleyContacts::jacobian(const double* x, const double* v, double
           for (int c = 0; c < n; ++c)
             if (isFixed(a) || isFixed(c)) Kj[static_cast<size_t>(a) * n + c] = Kd[static_cast<size_t>(a) * n + c] = 0.0;
         PetscCall(MatSetValuesBlocked(J, b.stride, gb, b.stride, gb, Kj.data(), ADD_VALUES));
-        if (D) PetscCall(MatSetValuesBlocked(D, b.stride, gb, b.stride, gb, Kd.data(), ADD_VALUES));
       }
+      // D holds no element terms of its own without Kelvin-Voigt damping: every element's block is
+      // inserted, zeros where it does not touch, or assembly squeezes the slots out and a later
+      // contact finds no room (J has the elements' stiffness there)
+      if (D) PetscCall(MatSetValuesBlocked(D, b.stride, gb, b.stride, gb, Kd.data(), ADD_VALUES));
       // every element's couplings to the free pulleys are inserted, zeros where it does not touch:
       // assembly squeezes out unused slots, and a later contact would find no room
       for (int p : set.pulleys) {

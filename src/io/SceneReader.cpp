@@ -958,12 +958,6 @@ public:
     if (const Field f = root.child("probes"); f.present()) readProbes(f);
     if (const Field f = root.child("contact"); f.present()) readContacts(f);
     else if (const Field p = root.child("pulleys"); p.present()) p.fail("pulleys act through contact: add a 'contact' entry for the body that touches them");
-    if (scene_.analysis == model::Analysis::Dynamic && model::isFirstOrder(scene_.dynamics.integrator))
-      for (const model::PulleyDesc& p : scene_.pulleys)
-        if (p.free())
-          root.child("dynamics").child("integrator").fail(
-              "pulley '" + p.name + "' turns freely (inertia): use generalized_alpha, newmark or hht (the "
-              "first-order schemes' matrices do not hold a free pulley's couplings yet)");
     checkCatenaryDefaults();
     checkOutputNames();
     checkRepresentable();

@@ -26,10 +26,6 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   _variableMass = assembler.hasVariableMass();
   if (_variableMass && model::isFirstOrder(desc.integrator))
     throw std::logic_error("Dynamics: a configuration-dependent mass needs a generalized-alpha scheme");
-  for (const model::PulleyDesc& p : assembler.model().pulleys())  // the scene reader says so first
-    if (p.free() && model::isFirstOrder(desc.integrator))
-      throw std::logic_error("Dynamics: a free pulley needs a generalized-alpha scheme (the first-order "
-                             "schemes' matrices do not hold its couplings)");
   _moving = assembler.model().hasPrescribedMotion();
   _constrained = assembler.hasConstraints();
   for (const model::Body& b : assembler.model().bodies()) _energyFloor += 1e-12 * b.properties.EA * b.length;
@@ -134,7 +130,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
     PetscCallAbort(comm, _constrainedSpace->setImplicit(_ts));
     if (desc.adaptive) PetscCallAbort(comm, _constrainedSpace->setTolerances(_ts, desc.atol, desc.rtol));
   } else if (_firstOrder) {
-    PetscCallAbort(comm, _space->setImplicit(_ts));  // the exact Schur-complement solve
+    PetscCallAbort(comm, _space->setImplicit(_ts, hubRowsOnSeveralRanks()));  // the exact Schur-complement solve
   }
 }
 

@@ -16,9 +16,13 @@ struct DynamicRun {
   std::string failure;
 };
 
-inline DynamicRun runDynamics(const model::SceneDescription& sc, double dt, double tEnd, double rhoInf) {
+// integrator: the scheme (generalized-alpha with rhoInf by default; BDF of order bdfOrder).
+inline DynamicRun runDynamics(const model::SceneDescription& sc, double dt, double tEnd, double rhoInf,
+                              model::Integrator integrator = model::Integrator::GeneralizedAlpha, int bdfOrder = 2) {
   MPI_Comm comm = PETSC_COMM_WORLD;
   model::DynamicsDesc dd;
+  dd.integrator = integrator;
+  dd.bdfOrder = bdfOrder;
   dd.rhoInf = rhoInf;
   dd.dt = dt;
   dd.tEnd = tEnd;
