@@ -70,6 +70,8 @@ def cmd_lines(a):
     for r in records:
         if a.x not in r or a.y not in r or r[a.y] is None:
             continue
+        if a.loglog and not (r[a.x] > 0 and r[a.y] > 0):  # a reference run (error 0) has no place on log axes
+            continue
         label = ", ".join(f"{k}={fmt(r.get(k))}" for k in keys) if keys else a.y
         groups.setdefault(label, []).append((r[a.x], r[a.y]))
     fig, ax = plt.subplots(figsize=(6.4, 4.4))

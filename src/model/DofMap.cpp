@@ -9,8 +9,10 @@ namespace strand::model {
 namespace {
 
 // The block groups that couple DOFs, as CSR: every element's blocks (group by group), then every
-// coupling (rigid body, joint) of the model.
-void blockGroups(const Model& model, std::vector<PetscInt>& ptr, std::vector<int>& blk) {
+// coupling (rigid body, joint, pulley) of the model. hubs false: without the couplings to free
+// pulleys, whose blocks reach every element of a belt (the partition: as edges they pull METIS
+// into cutting a belt loop many times; the interface-Schur solve takes their rows as hubs).
+void blockGroups(const Model& model, std::vector<PetscInt>& ptr, std::vector<int>& blk, bool hubs = true) {
   ptr.assign(1, 0);
   blk.clear();
   size_t total = 0;
@@ -22,6 +24,7 @@ void blockGroups(const Model& model, std::vector<PetscInt>& ptr, std::vector<int
       ptr.push_back(static_cast<PetscInt>(blk.size()));
     }
   for (const Coupling& c : model.couplings()) {
+    if (!hubs && c.pulley >= 0) continue;
     blk.insert(blk.end(), c.blocks.begin(), c.blocks.end());
     ptr.push_back(static_cast<PetscInt>(blk.size()));
   }
@@ -124,7 +127,10 @@ DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()
   std::vector<int> part(nb, 0);
   if (size > 1) {
     if (rank == 0) {
-      const std::vector<idx_t> p = metisPartition(model, gptr, gblk, size);
+      std::vector<PetscInt> pptr;
+      std::vector<int> pblk;
+      blockGroups(model, pptr, pblk, false);
+      const std::vector<idx_t> p = metisPartition(model, pptr, pblk, size);
       std::copy(p.begin(), p.end(), part.begin());
     }
     MPI_Bcast(part.data(), nb, MPI_INT, 0, comm);

@@ -125,12 +125,12 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
     PetscCallAbort(comm, useFullNewtonStep(snes, &_floor));  // no residual the step test discards
   }
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
-  PetscCallAbort(comm, setDirectSolverDefaults(ksp, _constrained || hubRowsOnSeveralRanks()));
+  PetscCallAbort(comm, setDirectSolverDefaults(ksp, _constrained));
   if (_constrainedSpace) {  // the assembled 2n x 2n Newton matrix, by the direct solver above
     PetscCallAbort(comm, _constrainedSpace->setImplicit(_ts));
     if (desc.adaptive) PetscCallAbort(comm, _constrainedSpace->setTolerances(_ts, desc.atol, desc.rtol));
   } else if (_firstOrder) {
-    PetscCallAbort(comm, _space->setImplicit(_ts, hubRowsOnSeveralRanks()));  // the exact Schur-complement solve
+    PetscCallAbort(comm, _space->setImplicit(_ts));  // the exact Schur-complement solve
   }
 }
 
@@ -416,19 +416,6 @@ PetscErrorCode Dynamics::retryNewton(void* ctx, PetscBool* again) {
   PetscFunctionBeginUser;
   *again = static_cast<Dynamics*>(ctx)->_reuse.retryWithFullNewton() ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
-}
-
-// A free pulley's row couples to every element of its belts: on several ranks every belt row with
-// an entry in another rank's columns is an interface row of the interface-Schur solve, so its dense
-// interface grows with the belt (5,900 unknowns at 3,000 elements: refused; 1,000 elements: 26x
-// slower than one rank). MUMPS takes those matrices instead (docs/performance.md, "Two-pulley drive").
-bool Dynamics::hubRowsOnSeveralRanks() const {
-  int size;
-  MPI_Comm_size(_asm.dofs().comm(), &size);
-  if (size < 2) return false;
-  for (const model::PulleyDesc& p : _asm.model().pulleys())
-    if (p.free()) return true;
-  return false;
 }
 
 // The bristle law's stick/slip states held while Newton solves (GeneralizedAlphaSetSettle).

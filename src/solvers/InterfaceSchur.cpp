@@ -18,10 +18,19 @@ namespace schur {
 PetscErrorCode interfaceSolve(const SchurData& d, MPI_Comm comm, const std::vector<PetscScalar>& g, bool transpose,
                               Eigen::VectorXd* x) {
   PetscFunctionBeginUser;
-  Eigen::VectorXd gAll(d.gamma.size());
-  PetscCallMPI(MPI_Allgatherv(g.data(), static_cast<PetscMPIInt>(g.size()), MPIU_SCALAR, gAll.data(), d.counts.data(),
-                              d.offsets.data(), MPIU_SCALAR, comm));
-  *x = transpose ? Eigen::VectorXd(d.schur.transpose().solve(gAll)) : Eigen::VectorXd(d.schur.solve(gAll));
+  // summed, not gathered: a rank taking the interior solve adds to other ranks' entries, and
+  // every rank of the PC must call the same collective
+  Eigen::VectorXd gAll = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(d.gamma.size()));
+  for (size_t i = 0; i < g.size(); ++i) gAll[d.ownOffset + static_cast<Eigen::Index>(i)] = g[i];
+  PetscCall(interfaceSolveSummed(d, comm, gAll, transpose, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode interfaceSolveSummed(const SchurData& d, MPI_Comm comm, Eigen::VectorXd& g, bool transpose,
+                                    Eigen::VectorXd* x) {
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, g.data(), static_cast<PetscMPIInt>(g.size()), MPIU_SCALAR, MPI_SUM, comm));
+  *x = transpose ? Eigen::VectorXd(d.schur.transpose().solve(g)) : Eigen::VectorXd(d.schur.solve(g));
   PetscFunctionReturn(0);
 }
 
@@ -43,9 +52,14 @@ PetscErrorCode clear(SchurData* d) {
   PetscFunctionReturn(0);
 }
 
+// A row coupling to more than this many blocks of other ranks is a hub (SchurData::hubs): a chain's
+// cut couples a block to the few blocks of one element across it.
+constexpr PetscInt kHubBlocks = 16;
+
 // The diagonal (own columns) and off-process blocks of the MPI matrix; on one rank the matrix
-// itself and no off-process block.
-PetscErrorCode localBlocks(Mat P, Mat* Ad, Mat* Ao, PetscBool* blocked) {
+// itself and no off-process block. colmap (may be null): the global (block) column of each of
+// Ao's columns.
+PetscErrorCode localBlocks(Mat P, Mat* Ad, Mat* Ao, PetscBool* blocked, const PetscInt** colmap = nullptr) {
   PetscBool mpibaij, mpiaij, seqbaij, seqaij;
   PetscFunctionBeginUser;
   PetscObject o = reinterpret_cast<PetscObject>(P);
@@ -54,27 +68,37 @@ PetscErrorCode localBlocks(Mat P, Mat* Ad, Mat* Ao, PetscBool* blocked) {
   PetscCall(PetscObjectTypeCompare(o, MATSEQBAIJ, &seqbaij));
   PetscCall(PetscObjectTypeCompare(o, MATSEQAIJ, &seqaij));
   *Ao = nullptr;
+  if (colmap) *colmap = nullptr;
   *blocked = static_cast<PetscBool>(mpibaij || seqbaij);
-  if (mpibaij) PetscCall(MatMPIBAIJGetSeqBAIJ(P, Ad, Ao, nullptr));
-  else if (mpiaij) PetscCall(MatMPIAIJGetSeqAIJ(P, Ad, Ao, nullptr));
+  if (mpibaij) PetscCall(MatMPIBAIJGetSeqBAIJ(P, Ad, Ao, colmap));
+  else if (mpiaij) PetscCall(MatMPIAIJGetSeqAIJ(P, Ad, Ao, colmap));
   else if (seqbaij || seqaij) *Ad = P;
   else SETERRQ(PetscObjectComm(o), PETSC_ERR_SUP, "PC %s needs an AIJ or BAIJ matrix, not %s", kPcInterfaceSchur,
                o->type_name);
   PetscFunctionReturn(0);
 }
 
-// Interface rows: the block rows with an entry in the off-process block; and the interface of all
-// ranks, in rank order (ownership is contiguous, so it is ascending).
+// Interface rows: the hubs (block rows coupling to more than kHubBlocks blocks of other ranks) and
+// the block rows with an entry in the off-process block outside the hubs' columns; and the
+// interface of all ranks, in rank order (ownership is contiguous, so it is ascending).
 PetscErrorCode findInterface(SchurData* d, Mat P) {
   Mat Ad, Ao;
   PetscBool blocked;
+  const PetscInt* colmap;
   PetscInt rows, cols, bs;
   PetscFunctionBeginUser;
-  PetscCall(localBlocks(P, &Ad, &Ao, &blocked));
+  PetscCall(localBlocks(P, &Ad, &Ao, &blocked, &colmap));
   PetscCall(MatGetBlockSize(P, &bs));
   PetscCall(MatGetLocalSize(P, &rows, &cols));
   d->rows = rows;
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(P));
+  PetscMPIInt size, rank;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscInt rstart, rend;
+  PetscCall(MatGetOwnershipRange(P, &rstart, &rend));
   std::vector<char> onInterface(rows / bs, 0);
+  d->hubs = false;
   if (Ao) {
     PetscInt n;
     const PetscInt *ia, *ja;
@@ -83,20 +107,46 @@ PetscErrorCode findInterface(SchurData* d, Mat P) {
     PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "PC %s: no row structure of the off-process block",
                kPcInterfaceSchur);
     const PetscInt rowsPerEntry = n > 0 ? rows / n : bs;  // bs for BAIJ's block rows, 1 for AIJ; a rank may own none
+    const PetscInt colsPerEntry = blocked ? bs : 1;
+    // the global block column of Ao's entry k
+    auto blockOf = [&](PetscInt k) { return colmap[ja[k]] * colsPerEntry / bs; };
+    // hubs: the off-process blocks a block row reaches (AIJ: its bs rows' entries over bs)
+    std::vector<PetscInt> hubsHere;
+    for (PetscInt r = 0; r < n; ++r) {
+      const PetscInt reach = (ia[r + 1] - ia[r]) * colsPerEntry / bs;
+      if (reach > kHubBlocks) hubsHere.push_back(rstart / bs + r * rowsPerEntry / bs);
+    }
+    std::sort(hubsHere.begin(), hubsHere.end());
+    hubsHere.erase(std::unique(hubsHere.begin(), hubsHere.end()), hubsHere.end());
+    const PetscMPIInt mineHubs = static_cast<PetscMPIInt>(hubsHere.size());
+    std::vector<PetscMPIInt> hubCounts(size), hubOffsets(size, 0);
+    PetscCallMPI(MPI_Allgather(&mineHubs, 1, MPI_INT, hubCounts.data(), 1, MPI_INT, comm));
+    for (PetscMPIInt p = 1; p < size; ++p) hubOffsets[p] = hubOffsets[p - 1] + hubCounts[p - 1];
+    std::vector<PetscInt> hubs(hubOffsets[size - 1] + hubCounts[size - 1]);  // global block rows, ascending
+    PetscCallMPI(MPI_Allgatherv(hubsHere.data(), mineHubs, MPIU_INT, hubs.data(), hubCounts.data(), hubOffsets.data(),
+                                MPIU_INT, comm));
+    d->hubs = !hubs.empty();
+    for (PetscInt b : hubsHere) onInterface[b - rstart / bs] = 1;
     for (PetscInt r = 0; r < n; ++r)
-      if (ia[r + 1] > ia[r]) onInterface[r * rowsPerEntry / bs] = 1;
+      for (PetscInt k = ia[r]; k < ia[r + 1]; ++k)
+        if (!std::binary_search(hubs.begin(), hubs.end(), blockOf(k))) {
+          onInterface[r * rowsPerEntry / bs] = 1;
+          break;
+        }
     PetscCall(MatRestoreRowIJ(Ao, 0, PETSC_FALSE, blocked, &n, &ia, &ja, &done));
+  } else if (size > 1) {  // the hub count is collective
+    const PetscMPIInt none = 0;
+    std::vector<PetscMPIInt> hubCounts(size), hubOffsets(size, 0);
+    PetscCallMPI(MPI_Allgather(&none, 1, MPI_INT, hubCounts.data(), 1, MPI_INT, comm));
+    for (PetscMPIInt p = 1; p < size; ++p) hubOffsets[p] = hubOffsets[p - 1] + hubCounts[p - 1];
+    std::vector<PetscInt> hubs(hubOffsets[size - 1] + hubCounts[size - 1]);
+    PetscCallMPI(MPI_Allgatherv(nullptr, 0, MPIU_INT, hubs.data(), hubCounts.data(), hubOffsets.data(), MPIU_INT, comm));
+    d->hubs = !hubs.empty();
   }
   d->interface.clear();
   for (PetscInt r = 0; r < rows; ++r)
     if (onInterface[r / bs]) d->interface.push_back(r);
 
-  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(P));
-  PetscMPIInt size, rank;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscInt rstart, rend;
-  PetscCall(MatGetOwnershipRange(P, &rstart, &rend));
   std::vector<PetscInt> own(d->interface);
   for (PetscInt& r : own) r += rstart;
   const PetscMPIInt mine = static_cast<PetscMPIInt>(own.size());
@@ -129,15 +179,13 @@ PetscErrorCode createInteriorSolver(PC pc, SchurData* d) {
   PetscFunctionReturn(0);
 }
 
-// This rank's rows of S, row-major, |own interface| x |interface|. Interior solve: A_GG (all
-// columns on the interface) minus A_GI Z (own interface columns); keeps A_GI's entries and Z.
-// Split sweeps: A_GG's columns of the other ranks' interface, and S00 = L_GG U_GG in the own ones.
-PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar>* rows) {
+// Split sweeps: this rank's rows of S, row-major, |own interface| x |interface|: A_GG's columns of
+// the other ranks' interface, and S00 = L_GG U_GG in the own ones.
+PetscErrorCode ownSchurRows(SchurData* d, Mat P, std::vector<PetscScalar>* rows) {
   const PetscInt nG = static_cast<PetscInt>(d->gamma.size()), mine = static_cast<PetscInt>(d->interface.size());
   PetscInt rstart, rend;
   PetscFunctionBeginUser;
   rows->assign(mine * nG, 0.0);
-  d->agi.assign(mine, {});
   PetscCall(MatGetOwnershipRange(P, &rstart, &rend));
   for (PetscInt i = 0; i < mine; ++i) {
     PetscInt nc;
@@ -146,13 +194,10 @@ PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar
     PetscCall(MatGetRow(P, rstart + d->interface[i], &nc, &c, &v));
     for (PetscInt k = 0; k < nc; ++k) {
       auto at = std::lower_bound(d->gamma.begin(), d->gamma.end(), c[k]);
-      const PetscInt column = static_cast<PetscInt>(at - d->gamma.begin());
       const bool own = c[k] >= rstart && c[k] < rend;
       if (at != d->gamma.end() && *at == c[k]) {
-        if (!(d->sweeps && own)) (*rows)[i * nG + column] += v[k];
-      } else if (own) {
-        if (!d->sweeps) d->agi[i].emplace_back(c[k] - rstart, v[k]);
-      } else
+        if (!own) (*rows)[i * nG + (at - d->gamma.begin())] += v[k];
+      } else if (!own)
         SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
                 "PC %s needs a structurally symmetric matrix: row %d couples to column %d of another rank, "
                 "which is not on the interface",
@@ -160,26 +205,110 @@ PetscErrorCode ownSchurRows(SchurData* d, Mat P, Mat Ad, std::vector<PetscScalar
     }
     PetscCall(MatRestoreRow(P, rstart + d->interface[i], &nc, &c, &v));
   }
-  if (d->sweeps) {  // S00 from the factor (factorSegment)
-    for (PetscInt i = 0; i < mine; ++i)
-      for (PetscInt j = 0; j < mine; ++j) (*rows)[i * nG + d->ownOffset + j] += d->S00(i, j);
-    PetscFunctionReturn(0);
+  for (PetscInt i = 0; i < mine; ++i)
+    for (PetscInt j = 0; j < mine; ++j) (*rows)[i * nG + d->ownOffset + j] += d->S00(i, j);
+  PetscFunctionReturn(0);
+}
+
+// Interior solve: this rank's part of S (nG x nG, row-major; summed over the ranks by the caller):
+// A_GG on its own interface rows, minus A_GI Z over the interface unknowns its interior touches.
+// A hub row's entries in another rank's interior columns are sent to that rank (its A_GI). Keeps
+// touch, agi, aig and Z.
+PetscErrorCode interiorSchur(SchurData* d, Mat P, RowMajor* S) {
+  const PetscInt nG = static_cast<PetscInt>(d->gamma.size()), mine = static_cast<PetscInt>(d->interface.size());
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(P));
+  PetscMPIInt size;
+  PetscInt rstart, rend;
+  const PetscInt* ranges;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(MatGetOwnershipRange(P, &rstart, &rend));
+  PetscCall(MatGetOwnershipRanges(P, &ranges));
+  S->setZero(nG, nG);
+  d->agi.assign(nG, {});
+  std::vector<std::vector<PetscInt>> sendRows(size), sendCols(size);  // (hub row, interior column) per owner
+  std::vector<std::vector<PetscScalar>> sendValues(size);
+  auto gammaIndex = [&](PetscInt global) {
+    auto at = std::lower_bound(d->gamma.begin(), d->gamma.end(), global);
+    return at != d->gamma.end() && *at == global ? static_cast<PetscInt>(at - d->gamma.begin()) : PetscInt(-1);
+  };
+  for (PetscInt i = 0; i < mine; ++i) {
+    const PetscInt row = rstart + d->interface[i], gi = d->ownOffset + i;
+    PetscInt nc;
+    const PetscInt* c;
+    const PetscScalar* v;
+    PetscCall(MatGetRow(P, row, &nc, &c, &v));
+    for (PetscInt k = 0; k < nc; ++k) {
+      const PetscInt j = gammaIndex(c[k]);
+      if (j >= 0) {
+        (*S)(gi, j) += v[k];
+      } else if (c[k] >= rstart && c[k] < rend) {
+        d->agi[gi].emplace_back(c[k] - rstart, v[k]);
+      } else {  // a hub's entry in another rank's interior
+        const PetscMPIInt owner =
+            static_cast<PetscMPIInt>(std::upper_bound(ranges, ranges + size + 1, c[k]) - ranges) - 1;
+        sendRows[owner].push_back(row);
+        sendCols[owner].push_back(c[k]);
+        sendValues[owner].push_back(v[k]);
+      }
+    }
+    PetscCall(MatRestoreRow(P, row, &nc, &c, &v));
   }
-  // column j of Z: A_II^{-1} A_IG e_j. A_IG e_j is column j of A_d on the interior rows, whose
-  // entries sit (structural symmetry) in the rows named by row j's interior columns.
-  d->Z.resize(d->rows, mine);
-  for (PetscInt j = 0; j < mine; ++j) {
+  if (d->hubs) {  // the hubs' entries in this rank's interior, from their owners (every rank takes the interior solve)
+    std::vector<PetscMPIInt> sendCounts(size), recvCounts(size), sendOffsets(size, 0), recvOffsets(size, 0);
+    for (PetscMPIInt p = 0; p < size; ++p) sendCounts[p] = static_cast<PetscMPIInt>(sendRows[p].size());
+    PetscCallMPI(MPI_Alltoall(sendCounts.data(), 1, MPI_INT, recvCounts.data(), 1, MPI_INT, comm));
+    for (PetscMPIInt p = 1; p < size; ++p) {
+      sendOffsets[p] = sendOffsets[p - 1] + sendCounts[p - 1];
+      recvOffsets[p] = recvOffsets[p - 1] + recvCounts[p - 1];
+    }
+    const PetscMPIInt total = recvOffsets[size - 1] + recvCounts[size - 1];
+    std::vector<PetscInt> rowsOut, colsOut, rowsIn(total), colsIn(total);
+    std::vector<PetscScalar> valuesOut, valuesIn(total);
+    for (PetscMPIInt p = 0; p < size; ++p) {
+      rowsOut.insert(rowsOut.end(), sendRows[p].begin(), sendRows[p].end());
+      colsOut.insert(colsOut.end(), sendCols[p].begin(), sendCols[p].end());
+      valuesOut.insert(valuesOut.end(), sendValues[p].begin(), sendValues[p].end());
+    }
+    PetscCallMPI(MPI_Alltoallv(rowsOut.data(), sendCounts.data(), sendOffsets.data(), MPIU_INT, rowsIn.data(),
+                               recvCounts.data(), recvOffsets.data(), MPIU_INT, comm));
+    PetscCallMPI(MPI_Alltoallv(colsOut.data(), sendCounts.data(), sendOffsets.data(), MPIU_INT, colsIn.data(),
+                               recvCounts.data(), recvOffsets.data(), MPIU_INT, comm));
+    PetscCallMPI(MPI_Alltoallv(valuesOut.data(), sendCounts.data(), sendOffsets.data(), MPIU_SCALAR, valuesIn.data(),
+                               recvCounts.data(), recvOffsets.data(), MPIU_SCALAR, comm));
+    for (PetscMPIInt k = 0; k < total; ++k) d->agi[gammaIndex(rowsIn[k])].emplace_back(colsIn[k] - rstart, valuesIn[k]);
+  }
+  // the touched interface unknowns; their columns' entries in the interior rows sit (structural
+  // symmetry) in the rows named by their rows' interior columns
+  d->touch.clear();
+  d->aig.clear();
+  for (PetscInt j = 0; j < nG; ++j) {
+    if (d->agi[j].empty()) continue;
+    d->touch.push_back(j);
+    std::vector<std::pair<PetscInt, PetscScalar>> column;
+    for (const auto& entry : d->agi[j]) {
+      const PetscInt row = rstart + entry.first;
+      PetscScalar a;
+      PetscCall(MatGetValues(P, 1, &row, 1, &d->gamma[j], &a));
+      column.emplace_back(entry.first, a);
+    }
+    d->aig.push_back(std::move(column));
+  }
+  const PetscInt nt = static_cast<PetscInt>(d->touch.size());
+  d->Z.resize(d->rows, nt);
+  for (PetscInt k = 0; k < nt; ++k) {  // column k of Z: A_II^{-1} A_IG e_touch[k]
     PetscScalar* w;
     PetscCall(VecSet(d->w, 0.0));
     PetscCall(VecGetArray(d->w, &w));
-    for (const auto& entry : d->agi[j]) PetscCall(MatGetValues(Ad, 1, &entry.first, 1, &d->interface[j], &w[entry.first]));
+    for (const auto& [row, a] : d->aig[k]) w[row] = a;
     PetscCall(VecRestoreArray(d->w, &w));
-    PetscCall(VecPlaceArray(d->y, d->Z.col(j).data()));
+    PetscCall(VecPlaceArray(d->y, d->Z.col(k).data()));
     PetscCall(KSPSolve(d->interiorSolver, d->w, d->y));
     PetscCall(VecResetArray(d->y));
-    for (PetscInt i = 0; i < mine; ++i)
-      for (const auto& [col, a] : d->agi[i]) (*rows)[i * nG + d->ownOffset + j] -= a * d->Z(col, j);
   }
+  for (PetscInt k1 = 0; k1 < nt; ++k1)
+    for (const auto& [col, a] : d->agi[d->touch[k1]])
+      for (PetscInt k2 = 0; k2 < nt; ++k2) (*S)(d->touch[k1], d->touch[k2]) -= a * d->Z(col, k2);
   PetscFunctionReturn(0);
 }
 
@@ -239,7 +368,8 @@ PetscErrorCode setUp(PC pc) {
   PetscCall(localBlocks(P, &Ad, &Ao, &blocked));
   if (!d->built) {
     PetscCall(findInterface(d, P));
-    PetscCall(schur::splitSweepsFit(d, Ad, blocked));
+    if (d->hubs) d->sweeps = false;  // an arrow, not a band: every rank takes the interior solve
+    else PetscCall(schur::splitSweepsFit(d, Ad, blocked));
     if (!d->sweeps) PetscCall(prepareInteriorSolve(pc, d, Ad));
   }
   bool factored = true;
@@ -270,14 +400,17 @@ PetscErrorCode setUp(PC pc) {
              "PC %s: the interface has %d unknowns, too many for its dense Schur complement (this PC is for "
              "chains); use MUMPS (-pc_type lu -pc_factor_mat_solver_type mumps with the solver's prefix)",
              kPcInterfaceSchur, static_cast<int>(nG));
-  std::vector<PetscScalar> mine;
-  PetscCall(ownSchurRows(d, P, Ad, &mine));
-  RowMajor S(nG, nG);
-  std::vector<PetscMPIInt> counts(d->counts), offsets(d->offsets);
-  for (PetscMPIInt& c : counts) c *= static_cast<PetscMPIInt>(nG);
-  for (PetscMPIInt& o : offsets) o *= static_cast<PetscMPIInt>(nG);
-  PetscCallMPI(MPI_Allgatherv(mine.data(), static_cast<PetscMPIInt>(mine.size()), MPIU_SCALAR, S.data(),
-                              counts.data(), offsets.data(), MPIU_SCALAR, comm));
+  // each rank's part, summed (a hub's rows take a part from every rank its row reaches): split
+  // sweeps give their own rows, the interior solve its touched rows and columns
+  RowMajor S = RowMajor::Zero(nG, nG);
+  if (d->sweeps) {
+    std::vector<PetscScalar> mine;
+    PetscCall(ownSchurRows(d, P, &mine));
+    std::copy(mine.begin(), mine.end(), S.data() + d->ownOffset * nG);
+  } else {
+    PetscCall(interiorSchur(d, P, &S));
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, S.data(), static_cast<PetscMPIInt>(S.size()), MPIU_SCALAR, MPI_SUM, comm));
   d->schur.compute(S);
   PetscFunctionReturn(0);
 }
@@ -317,36 +450,35 @@ PetscErrorCode apply(PC pc, Vec b, Vec x) {
   PetscCall(VecPlaceArray(d->y, xArray));
   PetscCall(KSPSolve(d->interiorSolver, d->w, d->y));  // zero on the interface rows
   PetscCall(VecResetArray(d->y));
-  std::vector<PetscScalar> g(mine);
-  for (PetscInt i = 0; i < mine; ++i) {
-    g[i] = bArray[d->interface[i]];
-    for (const auto& [col, a] : d->agi[i]) g[i] -= a * xArray[col];
-  }
+  const PetscInt nt = static_cast<PetscInt>(d->touch.size());
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(d->gamma.size())), xG;
+  for (PetscInt i = 0; i < mine; ++i) g[d->ownOffset + i] = bArray[d->interface[i]];
+  for (PetscInt k = 0; k < nt; ++k)
+    for (const auto& [col, a] : d->agi[d->touch[k]]) g[d->touch[k]] -= a * xArray[col];
   PetscCall(VecRestoreArrayRead(b, &bArray));
-  Eigen::VectorXd xG;
-  PetscCall(schur::interfaceSolve(*d, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), g, false, &xG));
-  if (mine > 0) {
-    Eigen::Map<Eigen::VectorXd>(xArray, d->Z.rows()) -= d->Z * xG.segment(d->ownOffset, mine);
-    for (PetscInt i = 0; i < mine; ++i) xArray[d->interface[i]] = xG[d->ownOffset + i];
+  PetscCall(schur::interfaceSolveSummed(*d, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), g, false, &xG));
+  if (nt > 0) {
+    Eigen::VectorXd xTouched(nt);
+    for (PetscInt k = 0; k < nt; ++k) xTouched[k] = xG[d->touch[k]];
+    Eigen::Map<Eigen::VectorXd>(xArray, d->Z.rows()) -= d->Z * xTouched;
   }
+  for (PetscInt i = 0; i < mine; ++i) xArray[d->interface[i]] = xG[d->ownOffset + i];
   PetscCall(VecRestoreArray(x, &xArray));
   PetscFunctionReturn(0);
 }
 
 // y = A^{-T} b, every block transposed: y_I = A_II^{-T} b_I;  S^T x_G = b_G - A_IG^T y_I;
-// x_I = A_II^{-T} (b_I - A_GI^T x_G). A_IG^T y_I and A_GI^T x_G are read off A_d^T times vectors
-// that vanish on the interface or the interior rows.
+// x_I = A_II^{-T} (b_I - A_GI^T x_G), with A_IG and A_GI the touched interface unknowns' columns
+// and rows in this rank's interior (aig, agi).
 PetscErrorCode applyTranspose(PC pc, Vec b, Vec x) {
   SchurData* d = dataOf(pc);
-  Mat Ad, Ao;
-  PetscBool blocked;
   PetscFunctionBeginUser;
   if (d->failed) {
     PetscCall(VecSet(x, 0.0));
     PetscFunctionReturn(0);
   }
   const PetscInt mine = static_cast<PetscInt>(d->interface.size());
-  const PetscScalar *bArray, *t;
+  const PetscScalar* bArray;
   PetscScalar* xArray;
   PetscCall(VecGetArrayRead(b, &bArray));
   PetscCall(VecGetArray(x, &xArray));
@@ -356,24 +488,21 @@ PetscErrorCode applyTranspose(PC pc, Vec b, Vec x) {
     PetscCall(VecRestoreArrayRead(b, &bArray));
     PetscFunctionReturn(0);
   }
-  PetscCall(localBlocks(pc->pmat, &Ad, &Ao, &blocked));
+  const PetscInt nt = static_cast<PetscInt>(d->touch.size());
   PetscCall(VecPlaceArray(d->y, xArray));
   PetscCall(interiorPart(d, bArray));
-  PetscCall(KSPSolveTranspose(d->interiorSolver, d->w, d->y));
-  PetscCall(MatMultTranspose(Ad, d->y, d->t));
-  std::vector<PetscScalar> g(mine);
-  PetscCall(VecGetArrayRead(d->t, &t));
-  for (PetscInt i = 0; i < mine; ++i) g[i] = bArray[d->interface[i]] - t[d->interface[i]];
-  PetscCall(VecRestoreArrayRead(d->t, &t));
-  Eigen::VectorXd xG;
-  PetscCall(schur::interfaceSolve(*d, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), g, true, &xG));
-  PetscCall(VecSet(d->y, 0.0));
-  for (PetscInt i = 0; i < mine; ++i) xArray[d->interface[i]] = xG[d->ownOffset + i];
-  PetscCall(MatMultTranspose(Ad, d->y, d->t));  // A_GI^T x_G on the interior rows
-  PetscCall(VecAYPX(d->t, -1.0, d->w));         // w still holds b_I
-  PetscCall(VecGetArrayRead(d->t, &t));
-  PetscCall(interiorPart(d, t));
-  PetscCall(VecRestoreArrayRead(d->t, &t));
+  PetscCall(KSPSolveTranspose(d->interiorSolver, d->w, d->y));  // y_I
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(d->gamma.size())), xG;
+  for (PetscInt i = 0; i < mine; ++i) g[d->ownOffset + i] = bArray[d->interface[i]];
+  for (PetscInt k = 0; k < nt; ++k)
+    for (const auto& [row, a] : d->aig[k]) g[d->touch[k]] -= a * xArray[row];
+  PetscCall(schur::interfaceSolveSummed(*d, PetscObjectComm(reinterpret_cast<PetscObject>(pc)), g, true, &xG));
+  PetscScalar* w;  // b_I - A_GI^T x_G
+  PetscCall(interiorPart(d, bArray));
+  PetscCall(VecGetArray(d->w, &w));
+  for (PetscInt k = 0; k < nt; ++k)
+    for (const auto& [col, a] : d->agi[d->touch[k]]) w[col] -= a * xG[d->touch[k]];
+  PetscCall(VecRestoreArray(d->w, &w));
   PetscCall(KSPSolveTranspose(d->interiorSolver, d->w, d->y));
   for (PetscInt i = 0; i < mine; ++i) xArray[d->interface[i]] = xG[d->ownOffset + i];
   PetscCall(VecResetArray(d->y));

@@ -35,12 +35,21 @@ struct SchurData {
   // by the identity: no submatrix to extract, and its solution is zero on the interface rows.
   // None without an interface (one rank): A_II is A_d.
   Mat interiorBlock = nullptr;
-  // A_GI: for each own interface row, its entries in own interior columns (local column, value)
-  std::vector<std::vector<std::pair<PetscInt, PetscScalar>>> agi;
-  // Z = A_II^{-1} A_IG (own interface columns; zero rows on the interface): the interior's response
+  // The interface unknowns this rank's interior couples to (indices into gamma, ascending): its own,
+  // and hubs of other ranks. For each: its row's entries in this rank's interior columns (A_GI,
+  // local column and value; a hub's come from its owner) and its column's entries in this rank's
+  // interior rows (A_IG, local row and value).
+  std::vector<PetscInt> touch;
+  std::vector<std::vector<std::pair<PetscInt, PetscScalar>>> agi, aig;
+  // Z = A_II^{-1} A_IG (the touched columns; zero rows on the interface): the interior's response
   // to unit interface values, computed for S anyway; keeping it saves the second interior solve of
   // an apply
   Eigen::MatrixXd Z;
+  // Hubs: block rows coupling to more than kHubBlocks blocks of other ranks (a free pulley's row
+  // reaches every element of its belt). They are interface unknowns, and a row coupling to
+  // another rank only through hub columns stays interior; then every rank takes the interior
+  // solve (its local block is an arrow, not a band) and S is summed over the ranks.
+  bool hubs = false;
 
   // Split sweeps. The LU of the whole local diagonal block A_d in factor order, the interface last:
   // A_d's order when the interface is at the end (DofMap numbers the end segments of a chain so),
@@ -60,6 +69,9 @@ struct SchurData {
 // redundant dense solve with S or S^T. Collective.
 PetscErrorCode interfaceSolve(const SchurData& d, MPI_Comm comm, const std::vector<PetscScalar>& g, bool transpose,
                               Eigen::VectorXd* x);
+// The same from each rank's part of the full right-hand side (all interface entries), summed.
+PetscErrorCode interfaceSolveSummed(const SchurData& d, MPI_Comm comm, Eigen::VectorXd& g, bool transpose,
+                                    Eigen::VectorXd* x);
 
 // Split sweeps (InterfaceSchurSweeps.cpp). splitSweepsFit decides d->sweeps for this rank from the
 // interface found and the structure of A_d (the local diagonal block), and analyzes that structure

@@ -270,7 +270,7 @@ PetscErrorCode StateSpace::shellApply(PC pc, Vec r, Vec x) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode StateSpace::setImplicit(TS ts, bool denseRows) {
+PetscErrorCode StateSpace::setImplicit(TS ts) {
   PetscFunctionBeginUser;
   MPI_Comm comm = _asm.dofs().comm();
   if (!_shell) {
@@ -280,7 +280,7 @@ PetscErrorCode StateSpace::setImplicit(TS ts, bool denseRows) {
     if (_damped) PetscCall(_asm.dofs().createMatrix(&_D, "dyn_reduced_"));
     PetscCall(KSPCreate(comm, &_reducedSolver));
     PetscCall(KSPSetOptionsPrefix(_reducedSolver, "dyn_reduced_"));
-    PetscCall(setDirectSolverDefaults(_reducedSolver, denseRows));
+    PetscCall(setDirectSolverDefaults(_reducedSolver, false));
     PetscCall(KSPSetFromOptions(_reducedSolver));
   }
   PetscCall(TSSetIFunction(ts, nullptr, iFunction, this));

@@ -20,6 +20,7 @@
 
 #include "strand/solvers/InterfaceSchur.hpp"
 #include "strand/solvers/StaticSolver.hpp"
+#include "support/Belts.hpp"
 #include "support/Scenes.hpp"
 
 using namespace strand;
@@ -278,6 +279,26 @@ TEST(InterfaceSchur, TheInterfaceIsTheTwoNodesOfEachCutElement) {
   EXPECT_LE(interface, 18 * (size() - 1));
   EXPECT_EQ(interface % 3, 0);
   EXPECT_EQ(total + interface, 61 * 6);
+  KSPDestroy(&ksp);
+}
+
+// A free pulley's block couples to every element of its belt (the two-pulley drive, 100 elements):
+// its rows are a hub, the belt rows that reach another rank only through the pulley's columns stay
+// interior, so the interface is the pulley's block and the loop's cuts, not the belt (a rank's
+// belt rows would all be interface otherwise); the solves are exact, on any number of ranks.
+TEST(InterfaceSchur, AFreePulleysBlockIsAHubNotAWholeBeltOfInterface) {
+  NewtonCantilever c(twoPulleyDrive(100));
+  KSP ksp = solverFor(c.A, false);
+  PC pc;
+  PetscInt interface, interior;
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetUp(ksp));
+  PetscCallAbort(PETSC_COMM_WORLD, KSPGetPC(ksp, &pc));
+  PetscCallAbort(PETSC_COMM_WORLD, solvers::InterfaceSchurGetSizes(pc, &interface, &interior));
+  PetscPrintf(PETSC_COMM_WORLD, "two-pulley drive on %d ranks: %d interface unknowns\n", size(), static_cast<int>(interface));
+  if (size() > 1) {
+    EXPECT_LE(interface, 2 + 16 * size());  // the pulley's block; a closed loop has one cut per rank
+  }
+  expectExactSolves(ksp, c.A, "two-pulley drive, a free pulley");
   KSPDestroy(&ksp);
 }
 

@@ -146,7 +146,6 @@ private:
                                      Mat P, void* ctx);
   static PetscErrorCode retryNewton(void* ctx, PetscBool* again);
   static PetscErrorCode settleContact(void* ctx, PetscReal t, Vec X, Vec V, PetscBool release, PetscInt* changed);
-  bool hubRowsOnSeveralRanks() const;
   static PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec X, void* ctx);
   static PetscErrorCode postStep(TS ts);
   static PetscErrorCode prescribe(PetscReal t, Vec X, Vec V, Vec A, void* ctx);

@@ -26,6 +26,12 @@
 //   - the interior solve otherwise (a middle segment, a block not banded in its own order, blocks
 //     of more than 6 unknowns): PETSc's LU of A_II (RCM), Z = A_II^{-1} A_IG kept, and an apply is
 //     one interior solve plus x_I -= Z x_G.
+// Hubs: a block row that reaches more than 16 blocks of other ranks (a free pulley's row reaches
+// every element of its belt) is an interface row, and a row that reaches another rank only
+// through hub columns stays interior: the interface stays the chain's cuts plus the hubs. An
+// interior row may then couple to another rank's interface unknown, so every rank takes the
+// interior solve, each rank's part of S (over the interface unknowns its interior touches, a hub's
+// row entries sent by its owner) is summed over the ranks, and so is the interface right-hand side.
 // Why: a chain's matrix is banded and a one-rank banded LU is already near-optimal; MUMPS's
 // distributed nested dissection adds its overheads for almost no parallel work (on two ranks its
 // solves took 20 times the one-rank LU's, docs/performance.md).

@@ -48,9 +48,7 @@ public:
   PetscErrorCode releaseView(Vec Y);
 
   // Sets the TS's IFunction and IJacobian (MatShell) and the SNES's linear solver (PCShell).
-  // denseRows: rows that couple to the whole body sit on several ranks (free pulleys): MUMPS takes
-  // the reduced matrix instead of the interface-Schur solve (Dynamics::hubRowsOnSeveralRanks).
-  PetscErrorCode setImplicit(TS ts, bool denseRows = false);
+  PetscErrorCode setImplicit(TS ts);
   // The implicit residual F(t, Y, Ydot) (TS IFunction) without a TS (ConstrainedStateSpace builds on it).
   PetscErrorCode implicitResidual(PetscReal t, Vec Y, Vec Ydot, Vec F) { return iFunction(nullptr, t, Y, Ydot, F, this); }
   // Sets the TS's RHSFunction.
