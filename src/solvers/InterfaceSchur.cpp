@@ -98,51 +98,42 @@ PetscErrorCode findInterface(SchurData* d, Mat P) {
   PetscInt rstart, rend;
   PetscCall(MatGetOwnershipRange(P, &rstart, &rend));
   std::vector<char> onInterface(rows / bs, 0);
-  d->hubs = false;
+  PetscInt n = 0;
+  const PetscInt *ia = nullptr, *ja = nullptr;
+  PetscBool done;
   if (Ao) {
-    PetscInt n;
-    const PetscInt *ia, *ja;
-    PetscBool done;
     PetscCall(MatGetRowIJ(Ao, 0, PETSC_FALSE, blocked, &n, &ia, &ja, &done));
     PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "PC %s: no row structure of the off-process block",
                kPcInterfaceSchur);
-    const PetscInt rowsPerEntry = n > 0 ? rows / n : bs;  // bs for BAIJ's block rows, 1 for AIJ; a rank may own none
-    const PetscInt colsPerEntry = blocked ? bs : 1;
-    // the global block column of Ao's entry k
-    auto blockOf = [&](PetscInt k) { return colmap[ja[k]] * colsPerEntry / bs; };
-    // hubs: the off-process blocks a block row reaches (AIJ: its bs rows' entries over bs)
-    std::vector<PetscInt> hubsHere;
-    for (PetscInt r = 0; r < n; ++r) {
-      const PetscInt reach = (ia[r + 1] - ia[r]) * colsPerEntry / bs;
-      if (reach > kHubBlocks) hubsHere.push_back(rstart / bs + r * rowsPerEntry / bs);
-    }
-    std::sort(hubsHere.begin(), hubsHere.end());
-    hubsHere.erase(std::unique(hubsHere.begin(), hubsHere.end()), hubsHere.end());
+  }
+  const PetscInt rowsPerEntry = n > 0 ? rows / n : bs;  // bs for BAIJ's block rows, 1 for AIJ; a rank may own none
+  const PetscInt colsPerEntry = blocked ? bs : 1;
+  // hubs: the block rows reaching more than kHubBlocks off-process blocks (AIJ: entries over bs),
+  // gathered from every rank as global block rows (ascending)
+  std::vector<PetscInt> hubsHere;
+  for (PetscInt r = 0; r < n; ++r)
+    if ((ia[r + 1] - ia[r]) * colsPerEntry / bs > kHubBlocks) hubsHere.push_back(rstart / bs + r * rowsPerEntry / bs);
+  hubsHere.erase(std::unique(hubsHere.begin(), hubsHere.end()), hubsHere.end());
+  std::vector<PetscInt> hubs;
+  if (size > 1) {
     const PetscMPIInt mineHubs = static_cast<PetscMPIInt>(hubsHere.size());
     std::vector<PetscMPIInt> hubCounts(size), hubOffsets(size, 0);
     PetscCallMPI(MPI_Allgather(&mineHubs, 1, MPI_INT, hubCounts.data(), 1, MPI_INT, comm));
     for (PetscMPIInt p = 1; p < size; ++p) hubOffsets[p] = hubOffsets[p - 1] + hubCounts[p - 1];
-    std::vector<PetscInt> hubs(hubOffsets[size - 1] + hubCounts[size - 1]);  // global block rows, ascending
+    hubs.resize(hubOffsets[size - 1] + hubCounts[size - 1]);
     PetscCallMPI(MPI_Allgatherv(hubsHere.data(), mineHubs, MPIU_INT, hubs.data(), hubCounts.data(), hubOffsets.data(),
                                 MPIU_INT, comm));
-    d->hubs = !hubs.empty();
-    for (PetscInt b : hubsHere) onInterface[b - rstart / bs] = 1;
-    for (PetscInt r = 0; r < n; ++r)
-      for (PetscInt k = ia[r]; k < ia[r + 1]; ++k)
-        if (!std::binary_search(hubs.begin(), hubs.end(), blockOf(k))) {
-          onInterface[r * rowsPerEntry / bs] = 1;
-          break;
-        }
-    PetscCall(MatRestoreRowIJ(Ao, 0, PETSC_FALSE, blocked, &n, &ia, &ja, &done));
-  } else if (size > 1) {  // the hub count is collective
-    const PetscMPIInt none = 0;
-    std::vector<PetscMPIInt> hubCounts(size), hubOffsets(size, 0);
-    PetscCallMPI(MPI_Allgather(&none, 1, MPI_INT, hubCounts.data(), 1, MPI_INT, comm));
-    for (PetscMPIInt p = 1; p < size; ++p) hubOffsets[p] = hubOffsets[p - 1] + hubCounts[p - 1];
-    std::vector<PetscInt> hubs(hubOffsets[size - 1] + hubCounts[size - 1]);
-    PetscCallMPI(MPI_Allgatherv(nullptr, 0, MPIU_INT, hubs.data(), hubCounts.data(), hubOffsets.data(), MPIU_INT, comm));
-    d->hubs = !hubs.empty();
   }
+  d->hubs = !hubs.empty();
+  // interface: the hubs, and the rows with an off-process entry outside the hubs' columns
+  for (PetscInt b : hubsHere) onInterface[b - rstart / bs] = 1;
+  for (PetscInt r = 0; r < n; ++r)
+    for (PetscInt k = ia[r]; k < ia[r + 1]; ++k)
+      if (!std::binary_search(hubs.begin(), hubs.end(), colmap[ja[k]] * colsPerEntry / bs)) {
+        onInterface[r * rowsPerEntry / bs] = 1;
+        break;
+      }
+  if (Ao) PetscCall(MatRestoreRowIJ(Ao, 0, PETSC_FALSE, blocked, &n, &ia, &ja, &done));
   d->interface.clear();
   for (PetscInt r = 0; r < rows; ++r)
     if (onInterface[r / bs]) d->interface.push_back(r);

@@ -2,6 +2,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,9 +17,13 @@ struct DynamicRun {
   std::string failure;
 };
 
+// What a run may read at each step besides the step's record (collective: every rank calls it).
+using StepHook = std::function<PetscErrorCode(solvers::Problem&, const solvers::DynamicsStep&, Vec X, Vec V)>;
+
 // integrator: the scheme (generalized-alpha with rhoInf by default; BDF of order bdfOrder).
 inline DynamicRun runDynamics(const model::SceneDescription& sc, double dt, double tEnd, double rhoInf,
-                              model::Integrator integrator = model::Integrator::GeneralizedAlpha, int bdfOrder = 2) {
+                              model::Integrator integrator = model::Integrator::GeneralizedAlpha, int bdfOrder = 2,
+                              const StepHook& onStep = nullptr) {
   MPI_Comm comm = PETSC_COMM_WORLD;
   model::DynamicsDesc dd;
   dd.integrator = integrator;
@@ -33,9 +38,9 @@ inline DynamicRun runDynamics(const model::SceneDescription& sc, double dt, doub
   {
     solvers::Dynamics dyn(p.assembler(), dd);
     PetscCallAbort(comm, dyn.setFromOptions());
-    solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec, Vec) -> PetscErrorCode {
+    solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec Xs, Vec Vs) -> PetscErrorCode {
       r.steps.push_back(st);
-      return 0;
+      return onStep ? onStep(p, st, Xs, Vs) : 0;
     };
     PetscCallAbort(comm, dyn.run(X, V, cb, &r.failure));
   }

@@ -36,6 +36,7 @@
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/Problem.hpp"
 #include "support/Belts.hpp"
+#include "support/DynamicRun.hpp"
 
 using namespace strand;
 using namespace strand::testing;
@@ -98,42 +99,25 @@ double equilibrium(double F) {
 }
 
 struct SlideRun {
-  std::string failure;
+  DynamicRun run;
   std::vector<double> t, x;  // the slide's displacement per step
-  std::vector<solvers::DynamicsStep> steps;
   double tension = 0.0;      // at the middle of the lower span, at the end
 };
 
 SlideRun runLoop(const model::SceneDescription& sc, double dt, double tEnd, double rhoInf) {
-  MPI_Comm comm = PETSC_COMM_WORLD;
-  model::DynamicsDesc dd;
-  dd.rhoInf = rhoInf;
-  dd.dt = dt;
-  dd.tEnd = tEnd;
-  solvers::Problem p(comm, sc);
-  Vec X, V;
-  PetscCallAbort(comm, p.createInitialState(&X, &V));
   SlideRun r;
-  {
-    solvers::Dynamics dyn(p.assembler(), dd);
-    PetscCallAbort(comm, dyn.setFromOptions());
-    solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec Xs, Vec Vs) -> PetscErrorCode {
-      std::vector<assembly::Assembler::PulleyLoad> load;
-      PetscCall(p.assembler().pulleyLoads(Xs, Vs, st.time, load));
-      r.t.push_back(st.time);
-      r.x.push_back(load[1].slide);
-      r.steps.push_back(st);
-      return 0;
-    };
-    PetscCallAbort(comm, dyn.run(X, V, cb, &r.failure));
+  const StepHook slide = [&](solvers::Problem& p, const solvers::DynamicsStep& st, Vec X, Vec V) -> PetscErrorCode {
+    std::vector<assembly::Assembler::PulleyLoad> load;
+    PetscCall(p.assembler().pulleyLoads(X, V, st.time, load));
+    r.t.push_back(st.time);
+    r.x.push_back(load[1].slide);
+    return 0;
+  };
+  r.run = runDynamics(sc, dt, tEnd, rhoInf, model::Integrator::GeneralizedAlpha, 2, slide);
+  if (r.run.failure.empty()) {
+    solvers::Problem p(PETSC_COMM_WORLD, sc);
+    r.tension = cableTension(kEA, nodeStretch(p.model().bodies()[0], r.run.q, 0));
   }
-  std::vector<double> q;
-  PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
-  q.resize(p.model().numDofs());
-  MPI_Bcast(q.data(), static_cast<int>(q.size()), MPI_DOUBLE, 0, comm);
-  r.tension = cableTension(kEA, nodeStretch(p.model().bodies()[0], q, 0));
-  VecDestroy(&X);
-  VecDestroy(&V);
   return r;
 }
 
@@ -150,7 +134,7 @@ TEST(Tensioner, SettlesWhereTheLoopsStaticsPutIt) {
   // 160 elements: at 80 the wraps' discretization puts x 2.4e-3 off (the span tension still 3e-4);
   // 160: 1.0e-4 and 1e-6, 320: 5.6e-5 and 3e-6
   const SlideRun r = runLoop(tensionedLoop(F, 0.02, 2.0 * kMass * omega, 160), 2e-4, 0.12, 0.8);
-  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  ASSERT_TRUE(r.run.failure.empty()) << r.run.failure;
   const double x = equilibrium(F), T = loopTension(x);
   if (rank() == 0)
     std::printf("tensioner at rest: x = %.6e m (closed form %.6e), T = %.5f N (%.5f; (F - k x) / 2 = %.5f)\n",
@@ -162,7 +146,7 @@ TEST(Tensioner, SettlesWhereTheLoopsStaticsPutIt) {
 TEST(Tensioner, OscillatesAtTheLoopsSlideFrequencyAndConservesEnergy) {
   const double F = 300.0, pi = std::acos(-1.0);
   const SlideRun r = runLoop(tensionedLoop(F, 4e-3, 0.0), 1e-4, 0.2, 0.8);
-  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  ASSERT_TRUE(r.run.failure.empty()) << r.run.failure;
   const double x0 = equilibrium(F), h = 1e-7;
   const double K = kSpring + (loopTension(x0 + h) - loopTension(x0 - h)) / h;  // k + 2 dT/dx
   const double period = 2.0 * pi * std::sqrt(kMass / K);
@@ -175,7 +159,7 @@ TEST(Tensioner, OscillatesAtTheLoopsSlideFrequencyAndConservesEnergy) {
   // pretension, sinks into them through a contact mode far beyond 1 / dt (an impact: the scheme's
   // error, 0.065 J in the first step, damped out over about 20 ms)
   double scale = 0.0, drift = 0.0, start = 0.0;
-  for (const solvers::DynamicsStep& st : r.steps) {
+  for (const solvers::DynamicsStep& st : r.run.steps) {
     scale = std::max({scale, st.kinetic, std::abs(st.loadWork)});
     if (st.time <= 0.02 + 1e-9) start = st.energy();
     else drift = std::max(drift, std::abs(st.energy() - start));
@@ -338,29 +322,15 @@ TEST(Tensioner, HoldsTheSlackSpanTensionOfARunningDrive) {
   belt.geometry.wrap.insert(belt.geometry.wrap.begin() + 1, w);  // a, then t on the lower span, then b
   sc.contacts[0].pulleys.push_back("t");
 
-  model::DynamicsDesc dd;
-  dd.rhoInf = 0.8;
-  dd.dt = 2e-4;
-  dd.tEnd = 1.5;
+  const DynamicRun run = runDynamics(sc, 2e-4, 1.5, 0.8);
+  ASSERT_TRUE(run.failure.empty()) << run.failure;
   solvers::Problem p(comm, sc);
-  Vec X, V;
-  PetscCallAbort(comm, p.createInitialState(&X, &V));
-  std::string failure;
-  {
-    solvers::Dynamics dyn(p.assembler(), dd);
-    PetscCallAbort(comm, dyn.setFromOptions());
-    PetscCallAbort(comm, dyn.run(X, V, nullptr, &failure));
-  }
-  ASSERT_TRUE(failure.empty()) << failure;
-  std::vector<assembly::Assembler::PulleyLoad> load;
-  PetscCallAbort(comm, p.assembler().pulleyLoads(X, V, dd.tEnd, load));
-  std::vector<double> q;
-  PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
-  q.resize(p.model().numDofs());
-  MPI_Bcast(q.data(), static_cast<int>(q.size()), MPI_DOUBLE, 0, comm);
+  const std::vector<double>& q = run.q;
+  const int driven = p.model().pulleyBlock(1), tensioner = p.model().pulleyBlock(2);
+  const double omega2 = run.v[2 * driven], omegaT = run.v[2 * tensioner];
   // the span tensions at the nodes nearest the middles of the three free spans
   const model::Body& b = p.model().bodies()[0];
-  const double x = load[2].slide, y = ct[1] + x;
+  const double x = q[2 * tensioner + 1], y = ct[1] + x;  // the slide (its block starts at 0)
   const double middles[3][2] = {{0.5 * ct[0], -r}, {0.5 * (ct[0] + cb[0]), -r}, {0.5 * cb[0], r}};
   double T[3];
   for (int m = 0; m < 3; ++m) {
@@ -377,15 +347,12 @@ TEST(Tensioner, HoldsTheSlackSpanTensionOfARunningDrive) {
   // the circles the centerline follows, each sunk by p / k = T / (rho k) under its pressure
   const double rhoA = r - Ts / (r * 1e8), rhoT = Rt + offset - Ts / ((Rt + offset) * 1e8);
   const double predicted = (t.slide.preload.value - kt * x) / pull(y, rhoA, rhoT);
-  const double torque = kDampingOfDrive * load[1].speed + 25.0;
+  const double torque = kDampingOfDrive * omega2 + 25.0;
   if (rank() == 0)
     std::printf("running drive with a tensioner: x = %.3e m, slack spans %.3f / %.3f N, tight %.3f N; the slide's "
-                "balance gives %.3f N (%.2e); (T_t - T_s) r = %.4f N m, c omega2 + 25 = %.4f N m; speeds %.4f, %.4f, "
+                "balance gives %.3f N (%.2e); (T_t - T_s) r = %.4f N m, c omega2 + 25 = %.4f N m; driven %.4f, "
                 "tensioner %.4f rad/s\n",
-                x, T[0], T[1], Tt, predicted, Ts / predicted - 1.0, (Tt - Ts) * r, torque, load[0].speed,
-                load[1].speed, load[2].speed);
+                x, T[0], T[1], Tt, predicted, Ts / predicted - 1.0, (Tt - Ts) * r, torque, omega2, omegaT);
   EXPECT_NEAR(Ts / predicted, 1.0, 1e-2);
   EXPECT_NEAR((Tt - Ts) * r / torque, 1.0, 2e-3);
-  VecDestroy(&X);
-  VecDestroy(&V);
 }
