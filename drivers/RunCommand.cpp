@@ -145,10 +145,6 @@ public:
     _writer->setCommitPolicy(commitPolicy);
     say("strand " + std::string(kVersion) + ": " + _scene.file + ": " + std::to_string(m.numElements()) +
         " elements, " + std::to_string(m.numDofs()) + " coordinates, " + std::to_string(commSize()) + " rank(s)");
-    for (const model::SourceMark& mark : m.hubClampsHoldingStretch())  // not silently (Model::clampsSlopeDirection)
-      say("note: " + mark.where() + ": a clamped support on a hub holds the whole slope, i.e. zero axial "
-          "strain at the root; for a free root stretch use a clamp joint on a driven rigid body "
-          "(meshes/spin-up-joint.yaml), or write clamped_unstretched to say that this is meant");
     Vec X;
     PetscCallAbort(_comm, _problem.dofs().createVector(&X));
     PetscCallAbort(_comm, _problem.assembler().initialState(X));

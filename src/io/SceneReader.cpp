@@ -1111,8 +1111,21 @@ private:
         if (!d.adaptive) t.fail("only used with integrator: bdf and adaptive: true");
         (std::string(key) == "rtol" ? d.rtol : d.atol) = requirePositive(t);
       }
-    // 3D rigid bodies carry the orthonormality equations of their frame: constraints too
-    const bool constrained = !scene_.joints.empty() || (ctx_.dim == 3 && !scene_.rigidBodies.empty());
+    // 3D rigid bodies carry the orthonormality equations of their frame: constraints too; so does a
+    // `clamped` hub support of a cable-like kind (its slope's direction turns: Model::addClampDirectionJoints)
+    const model::SupportDesc* hubClamp = nullptr;
+    for (const model::SupportDesc& s : scene_.supports) {
+      if (!s.hub.present || s.type != model::SupportType::Clamped) continue;
+      for (const model::BodyDesc& b : scene_.bodies) {
+        const elements::KindInfo& k = elements::kindInfo(b.kind);
+        if (b.name == s.at.body && k.layout[k.orientationBlock] == elements::BlockRole::AxialGradient) hubClamp = &s;
+      }
+    }
+    const bool constrained = !scene_.joints.empty() || (ctx_.dim == 3 && !scene_.rigidBodies.empty()) || hubClamp;
+    if (model::isExplicit(d.integrator) && hubClamp && scene_.joints.empty())
+      integrator.fail("explicit integrators (rk4, abm4) take problems without Lagrange multipliers, and the `clamped` hub "
+                      "support at " + hubClamp->mark.where() + " holds the turning slope direction by one; use "
+                      "generalized_alpha or bdf, or `clamped_unstretched` (the whole slope held: zero axial strain at the root)");
     if (model::isExplicit(d.integrator) && constrained)
       integrator.fail("explicit integrators (rk4, abm4) take problems without joints (no Lagrange multipliers; a 3D "
                       "rigid body's frame is held by six); use generalized_alpha with rho_inf <= 0.9 or bdf for scenes with joints");

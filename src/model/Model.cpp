@@ -417,13 +417,14 @@ void Model::placeInitialState(Build& build) {
 // direction and leaves its length, the axial stretch at the support, free: a rotating beam's root
 // carries the centrifugal tension, a rod's root the end load (issue 36: holding the length forced
 // zero root strain, 2.5 % on a chordwise frequency at 26 % strain). A beam's cross-section vector
-// (shear kinds) is held whole, as is a clamp a hub turns (the direction would turn with time).
+// (shear kinds) is held whole. On a turning hub the held direction turns with it: see
+// addClampDirectionJoints.
 namespace {
 bool orientedBySlope(const Body& b) { return b.info().layout[b.info().orientationBlock] == elements::BlockRole::AxialGradient; }
 }  // namespace
 
 bool Model::clampsSlopeDirection(const SupportDesc& s, const Body& b) const {
-  return s.type == SupportType::Clamped && !s.hub.present && orientedBySlope(b);
+  return s.type == SupportType::Clamped && orientedBySlope(b);
 }
 
 // The unit normals of the direction t (2D: one, 3D: two, orthonormal).
@@ -442,9 +443,17 @@ std::vector<Vec3> Model::normalsOf(const Vec3& t) const {
 // the slope's other components are held (returned per support, eliminated like any fixed
 // coordinate); along any other direction t the equations r_x . n = 0 for t's normals n hold it,
 // with multipliers (a joint of dim - 1 equations on the slope block, appended to _joints).
-std::vector<std::vector<int>> Model::addClampDirectionJoints(Build& build) {
+// On a turning hub the normals turn with it, n(t) = R(psi(t)) n0: each is a block of its own (no
+// element, no mass), all of its coordinates held and moved by the hub as a slope block is
+// (addSupports), and the joint is r_x . n = 0 with n a Block field. So the rheonomic constraint
+// needs nothing new from the joints or the integrators: it is the clamp joint to a driven rigid
+// body's frame with the frame reduced to the normals.
+Model::ClampDirections Model::addClampDirectionJoints(Build& build) {
   const SceneDescription& scene = build.scene;
-  std::vector<std::vector<int>> held(scene.supports.size());
+  ClampDirections out;
+  out.heldSlopeComponents.resize(scene.supports.size());
+  out.turningNormals.resize(scene.supports.size());
+  std::vector<std::pair<int, Vec3>> normalValues;  // block, n0
   for (size_t si = 0; si < scene.supports.size(); ++si) {
     const SupportDesc& s = scene.supports[si];
     const Body& b = build.body(_bodies, s.at.body, s.at.mark);
@@ -460,9 +469,9 @@ std::vector<std::vector<int>> Model::addClampDirectionJoints(Build& build) {
       t[i] = _q0[ob * _dim + i] / len;
       if (std::fabs(t[i]) > 1e-14) ++nonzero, along = i;
     }
-    if (nonzero == 1) {
+    if (nonzero == 1 && !s.hub.present) {
       for (int i = 0; i < _dim; ++i)
-        if (i != along) held[si].push_back(i);
+        if (i != along) out.heldSlopeComponents[si].push_back(i);
       continue;
     }
     Joint j;
@@ -475,19 +484,29 @@ std::vector<std::vector<int>> Model::addClampDirectionJoints(Build& build) {
       o.form = elements::ConstraintForm::Orthogonal;
       o.a.kind = elements::JointField::Kind::Block;
       o.a.block = 0;
-      o.b.kind = elements::JointField::Kind::Constant;
-      o.b.c = nrm;
+      if (s.hub.present) {  // n(t): a held block the hub turns
+        o.b.kind = elements::JointField::Kind::Block;
+        o.b.block = static_cast<int>(j.blocks.size());
+        j.blocks.push_back(_numBlocks);
+        out.turningNormals[si].push_back(_numBlocks);
+        normalValues.emplace_back(_numBlocks++, nrm);
+      } else {
+        o.b.kind = elements::JointField::Kind::Constant;
+        o.b.c = nrm;
+      }
       j.equations.push_back(o);
     }
     _joints.push_back(std::move(j));
   }
   _q0.resize(numDofs(), 0.0);
-  return held;
+  for (const auto& [block, n0] : normalValues)
+    for (int i = 0; i < _dim; ++i) _q0[block * _dim + i] = n0[i];
+  return out;
 }
 
 void Model::addSupports(Build& build) {
   const SceneDescription& scene = build.scene;
-  const std::vector<std::vector<int>> heldSlopes = addClampDirectionJoints(build);
+  const ClampDirections clampDirections = addClampDirectionJoints(build);
   _fixed.assign(numDofs(), 0);
   _multiplier.assign(numDofs(), 0);
   for (size_t r = 0; r < _rigid.size(); ++r) {
@@ -534,7 +553,7 @@ void Model::addSupports(Build& build) {
   }
   // clamped: the position and the orientation block's direction (a cable's slope: its length, the
   // axial stretch, stays free; addClampDirectionJoints) or the whole block (a beam's cross-section
-  // vector, a clamp on a hub; clamped_unstretched); pinned: the position; fixed: the listed node
+  // vector; clamped_unstretched); pinned: the position; fixed: the listed node
   // coordinates, block by block
   for (size_t si = 0; si < scene.supports.size(); ++si) {
     const SupportDesc& s = scene.supports[si];
@@ -547,14 +566,19 @@ void Model::addSupports(Build& build) {
       if (s.type != SupportType::Fixed) _fixed[pb * _dim + i] = 1;
       if (wholeOrientation) _fixed[ob * _dim + i] = 1;
     }
-    for (int c : heldSlopes[si]) _fixed[ob * _dim + c] = 1;
+    for (int c : clampDirections.heldSlopeComponents[si]) _fixed[ob * _dim + c] = 1;
+    for (int k : clampDirections.turningNormals[si])
+      for (int i = 0; i < _dim; ++i) _fixed[k * _dim + i] = 1;
     if (s.type == SupportType::Fixed)
       for (int c : s.dofs) _fixed[b.block(n, c / _dim) * _dim + c % _dim] = 1;
     if (s.hub.present) {
-      if (s.type == SupportType::Clamped && orientedBySlope(b)) _hubClampsHoldingStretch.push_back(s.mark);
       HubMotion h{s.hub.center, s.hub.axis, s.hub.angle, {pb}, {0}};
       if (wholeOrientation) {
         h.blocks.push_back(ob);
+        h.slope.push_back(1);
+      }
+      for (int k : clampDirections.turningNormals[si]) {  // turned as slopes are
+        h.blocks.push_back(k);
         h.slope.push_back(1);
       }
       for (const HubMotion& other : _hubs)

@@ -143,13 +143,15 @@ inline TipSeries runAncfSpinUp(double E, double omega0, int elements, double dt,
   PetscCallAbort(comm, dyn.setFromOptions());
   TipSeries s;
   std::vector<double> q;
-  const int n = p.model().numDofs();
   solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec Xs, Vec) -> PetscErrorCode {
     PetscFunctionBeginUser;
     if (st.step % every != 0 && st.time < tEnd * (1 - 1e-12)) PetscFunctionReturn(0);
     PetscCall(p.assembler().gatherToRoot(Xs, q));
     double r[2] = {0.0, 0.0};
-    if (!q.empty()) r[0] = q[n - 4], r[1] = q[n - 3];  // last node: (x, y, x', y') in 2D
+    if (!q.empty()) {  // the last node
+      const model::Vec3 tip = nodePosition(p, q, 0, -1);
+      r[0] = tip[0], r[1] = tip[1];
+    }
     PetscCallMPI(MPI_Bcast(r, 2, MPI_DOUBLE, 0, comm));
     const double psi = angle.at(st.time).f, c = std::cos(psi), sn = std::sin(psi);
     s.t.push_back(st.time);

@@ -918,6 +918,16 @@ TEST(SceneReader, RigidBodiesAndJoints) {
       "joints: [{type: pin, a: {body: rod, point: [-0.5, 0]}, b: {ground: [0, 0]}}]\n"
       "dynamics: {integrator: rk4, dt: 1e-3, t_end: 1}\n";  // line 5
   EXPECT_TRUE(failsWith(pinned, 5, "dynamics.integrator", "explicit integrators (rk4, abm4) take problems without joints"));
+  // a `clamped` hub support of a cable holds the turning slope direction by a multiplier: the
+  // message names the support and the alternatives; clamped_unstretched (eliminated) runs on rk4
+  const std::string hubClamp =
+      "analysis: dynamic\ndimension: 2\nbodies: [{name: b, element: AncfCable2d, elements: 2, geometry: {kind: line, "
+      "start: [0, 0], end: [1, 0]}, section: {E: 1e9, A: 1e-4, I: 1e-9, rho: 1000}}]\n"
+      "supports: [{body: b, node: 0, type: clamped, hub: {angle: {function: linear, rate: 1}}}]\n"
+      "dynamics: {integrator: rk4, dt: 1e-5, t_end: 1e-3}\n";  // line 5
+  EXPECT_TRUE(failsWith(hubClamp, 5, "dynamics.integrator", "the `clamped` hub support at scene.yaml:4: supports[0]"));
+  EXPECT_NO_THROW(parseScene(edit(hubClamp, "type: clamped,", "type: clamped_unstretched,"), "hc.yaml"));
+  EXPECT_NO_THROW(parseScene(edit(hubClamp, "rk4", "bdf, constraint_form: index3"), "hc.yaml"));
   EXPECT_EQ(parseScene(edit(pinned, "rk4", "bdf"), "p.yaml").dynamics.constraintForm,
             model::DynamicsDesc::ConstraintForm::Ggl);
   EXPECT_EQ(parseScene(edit(pinned, "rk4", "bdf, constraint_form: index3"), "p.yaml").dynamics.constraintForm,

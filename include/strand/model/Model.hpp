@@ -167,9 +167,6 @@ public:
   const std::vector<double>& initialVelocities() const { return _v0; }
   // Supports on turning hubs (their DOFs are among fixedDofs; the others stay at zero displacement).
   const std::vector<HubMotion>& hubMotions() const { return _hubs; }
-  // `clamped` supports of cable-like kinds on a hub: they hold the whole slope, the root's stretch
-  // too (clampsSlopeDirection), which the driver tells the user
-  const std::vector<SourceMark>& hubClampsHoldingStretch() const { return _hubClampsHoldingStretch; }
   // Single prescribed coordinates (a driven rigid body's phi): u = function(t) - function(0), among
   // fixedDofs (the scene's angle is the one at t = 0).
   struct PrescribedCoordinate {
@@ -206,7 +203,11 @@ private:
   void addSupports(Build& b);
   bool clampsSlopeDirection(const SupportDesc& s, const Body& b) const;
   std::vector<Vec3> normalsOf(const Vec3& t) const;
-  std::vector<std::vector<int>> addClampDirectionJoints(Build& b);
+  struct ClampDirections {  // per scene support
+    std::vector<std::vector<int>> heldSlopeComponents;  // slope components held (a slope along an axis)
+    std::vector<std::vector<int>> turningNormals;       // the blocks of the normals a hub turns
+  };
+  ClampDirections addClampDirectionJoints(Build& b);
   void addLoads(Build& b);
   void addInitialVelocities(Build& b);
   void addJointEquations(Build& b);
@@ -227,7 +228,6 @@ private:
   std::vector<TimedLoad> _timed;
   std::optional<TimeFunction> _loadFunction;
   std::vector<HubMotion> _hubs;
-  std::vector<SourceMark> _hubClampsHoldingStretch;
   std::vector<PrescribedCoordinate> _prescribed;
   Vec3 _gravity{};
   std::vector<PulleyDesc> _pulleys;
