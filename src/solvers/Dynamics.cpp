@@ -125,7 +125,9 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
     PetscCallAbort(comm, useFullNewtonStep(snes, &_floor));  // no residual the step test discards
   }
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
-  PetscCallAbort(comm, setDirectSolverDefaults(ksp, _constrained));
+  // second-order form: K + c_v D + c_a M is regular without the multiplier rows (the interface
+  // Schur PC takes them); the first-order constrained state space keeps MUMPS
+  PetscCallAbort(comm, setDirectSolverDefaults(ksp, _constrained, !_constrainedSpace));
   if (_constrainedSpace) {  // the assembled 2n x 2n Newton matrix, by the direct solver above
     PetscCallAbort(comm, _constrainedSpace->setImplicit(_ts));
     if (desc.adaptive) PetscCallAbort(comm, _constrainedSpace->setTolerances(_ts, desc.atol, desc.rtol));
@@ -214,7 +216,7 @@ PetscErrorCode Dynamics::createMassSolver(Vec X, KSP* ksp) {
   PetscCall(KSPSetOptionsPrefix(*ksp, "dyn_mass_"));
   PetscCall(KSPSetOperators(*ksp, S, S));
   PetscCall(MatDestroy(&S));
-  PetscCall(setDirectSolverDefaults(*ksp, _constrained));
+  PetscCall(setDirectSolverDefaults(*ksp, _constrained, true));  // [M G^T; G 0]: M is regular
   PetscCall(KSPSetFromOptions(*ksp));
   PetscFunctionReturn(0);
 }

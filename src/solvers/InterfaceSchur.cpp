@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "solvers/InterfaceSchurData.hpp"
@@ -134,6 +135,21 @@ PetscErrorCode findInterface(SchurData* d, Mat P) {
         break;
       }
   if (Ao) PetscCall(MatRestoreRowIJ(Ao, 0, PETSC_FALSE, blocked, &n, &ia, &ja, &done));
+  // multiplier rows (a zero on the diagonal: a saddle point's constraint rows) join the interface,
+  // whose dense Schur complement is factored with partial pivoting; the interior without them is
+  // regular where the caller says so (setDirectSolverDefaults' regularInterior)
+  {
+    Vec diag;
+    PetscCall(MatCreateVecs(Ad, nullptr, &diag));
+    PetscCall(MatGetDiagonal(Ad, diag));
+    const PetscScalar* a;
+    PetscCall(VecGetArrayRead(diag, &a));
+    d->multipliers = false;
+    for (PetscInt r = 0; r < rows; ++r)
+      if (a[r] == 0.0) onInterface[r / bs] = 1, d->multipliers = true;
+    PetscCall(VecRestoreArrayRead(diag, &a));
+    PetscCall(VecDestroy(&diag));
+  }
   d->interface.clear();
   for (PetscInt r = 0; r < rows; ++r)
     if (onInterface[r / bs]) d->interface.push_back(r);
@@ -360,6 +376,7 @@ PetscErrorCode setUp(PC pc) {
   if (!d->built) {
     PetscCall(findInterface(d, P));
     if (d->hubs) d->sweeps = false;  // an arrow, not a band: every rank takes the interior solve
+    else if (d->multipliers) d->sweeps = false;  // no unpivoted trailing factors over a zero diagonal
     else PetscCall(schur::splitSweepsFit(d, Ad, blocked));
     if (!d->sweeps) PetscCall(prepareInteriorSolve(pc, d, Ad));
   }
@@ -403,6 +420,15 @@ PetscErrorCode setUp(PC pc) {
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, S.data(), static_cast<PetscMPIInt>(S.size()), MPIU_SCALAR, MPI_SUM, comm));
   d->schur.compute(S);
+  // S is the same on every rank (summed above): a zero pivot of its LU (a singular matrix whose
+  // zero row went onto the interface, e.g. a multiplier row without its constraint) fails all alike
+  const auto pivots = d->schur.matrixLU().diagonal();
+  for (Eigen::Index k = 0; k < pivots.size(); ++k)
+    if (!(std::fabs(pivots[k]) > 0.0)) {
+      d->failed = true;
+      PetscCall(PCSetFailedReason(pc, PC_FACTOR_NUMERIC_ZEROPIVOT));
+      break;
+    }
   PetscFunctionReturn(0);
 }
 

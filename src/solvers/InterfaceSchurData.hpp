@@ -50,6 +50,11 @@ struct SchurData {
   // another rank only through hub columns stays interior; then every rank takes the interior
   // solve (its local block is an arrow, not a band) and S is summed over the ranks.
   bool hubs = false;
+  // Multiplier rows (a zero diagonal) on this rank's interface: its segment takes the interior
+  // solve, whose A_II has them replaced by the identity and whose S is factored with pivoting (the
+  // split sweeps' trailing factors would meet them unpivoted: 3e-12 relative residuals on one rank,
+  // 2e-6 on two, on meshes/link-and-cable.yaml)
+  bool multipliers = false;
 
   // Split sweeps. The LU of the whole local diagonal block A_d in factor order, the interface last:
   // A_d's order when the interface is at the end (DofMap numbers the end segments of a chain so),

@@ -8,12 +8,12 @@
 
 namespace strand::solvers {
 
-PetscErrorCode setDirectSolverDefaults(KSP ksp, bool saddlePoint) {
+PetscErrorCode setDirectSolverDefaults(KSP ksp, bool saddlePoint, bool regularInterior) {
   PetscFunctionBeginUser;
   PC pc;
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
-  if (!saddlePoint) {
+  if (!saddlePoint || regularInterior) {
     // Per-rank banded LU plus the interface Schur complement (InterfaceSchur.hpp): at 1e5 elements
     // on two ranks ~20 times faster solves than MUMPS; on one rank (no interface) the banded LU of
     // a chain, 5 % faster steps than PETSc's LU at 1e3 and 1e4 elements, and PETSc's LU with RCM

@@ -214,6 +214,23 @@ TEST(InterfaceSchur, SolvesTheNewtonMatrixOfAChainLikeMumps) {
   }
 }
 
+// A saddle point: the Newton matrix of seed 001's beam (40 elements) clamped to a turning hub,
+// whose slope direction a multiplier holds (r'.n(t) = 0). The multiplier row has a zero diagonal:
+// it joins the interface, and the dense Schur complement, factored with partial pivoting, takes it
+// (the rest, K + c_V D + c_A M, is regular). Exact as MUMPS, on one rank and two.
+TEST(InterfaceSchur, TakesTheMultiplierRowsOfASaddlePointOntoItsInterface) {
+  NewtonCantilever c(seed001Beam(7e10, 40, 4.0, 15.0));
+  ASSERT_TRUE(c.problem.model().hasConstraints());
+  KSP schur = solverFor(c.A, false);
+  expectExactSolves(schur, c.A, "hub clamp (one multiplier)");
+  PC pc;
+  PetscInt interface, interior;
+  PetscCallAbort(PETSC_COMM_WORLD, KSPGetPC(schur, &pc));
+  PetscCallAbort(PETSC_COMM_WORLD, solvers::InterfaceSchurGetSizes(pc, &interface, &interior));
+  EXPECT_GE(interface, 1);  // the multiplier (and, on two ranks, the cut)
+  KSPDestroy(&schur);
+}
+
 // New values in the same structure (a Newton matrix rebuilt): the set-up refactors (split sweeps:
 // the local block itself, whose state changed) and solves exactly again.
 TEST(InterfaceSchur, RefactorsWhenTheValuesChange) {

@@ -1,6 +1,6 @@
 #pragma once
 // An exact parallel direct solve for chains (cables, belts, tethers): the PETSc PC type
-// "strand_interface_schur", the default of setDirectSolverDefaults for matrices without multipliers.
+// "strand_interface_schur", the default of setDirectSolverDefaults (multipliers in dynamics too).
 //
 // Each rank owns a contiguous segment of the chain. A row is an *interface* row when it couples to
 // a column owned by another rank (a non-empty row of the off-process block of the MPI matrix);
@@ -36,8 +36,11 @@
 // distributed nested dissection adds its overheads for almost no parallel work (on two ranks its
 // solves took 20 times the one-rank LU's, docs/performance.md).
 //
-// Like PETSc's own LU it does not pivot: for saddle-point matrices (Lagrange multipliers) use
-// MUMPS. The interior solve's local solver has the options prefix <pc prefix>schur_interior_
+// Its banded part does not pivot, like PETSc's own LU. A row with a zero on the diagonal (a
+// Lagrange multiplier's) is put on the interface, whose dense Schur complement is factored with
+// partial pivoting: a saddle-point matrix is solved exactly when the rest of it is regular (a
+// dynamics Newton matrix K + c_v D + c_a M; setDirectSolverDefaults' regularInterior), else the
+// interior LU or S reports a zero pivot (PC failure). Static mechanisms: MUMPS. The interior solve's local solver has the options prefix <pc prefix>schur_interior_
 // (default: preonly, LU, RCM ordering); -<pc prefix>pc_strand_interface_schur_split_sweeps false
 // makes every rank use it.
 #include <petscpc.h>

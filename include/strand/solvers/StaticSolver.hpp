@@ -66,8 +66,11 @@ private:
 // session 13, design section 3), on one rank too (no interface: the banded LU of a chain, or
 // PETSc's LU with RCM ordering for another matrix; PETSc's LU with RCM was the serial default until
 // session 18).
-// saddlePoint: the matrix has zero diagonal blocks (Lagrange multipliers), so the factorization
-// must pivot: MUMPS on any number of ranks (PETSc's own LU does not pivot).
-PetscErrorCode setDirectSolverDefaults(KSP ksp, bool saddlePoint = false);
+// saddlePoint: the matrix has zero diagonal entries (Lagrange multipliers), so the factorization
+// must pivot. With regularInterior (the matrix without its multiplier rows and columns is regular:
+// a dynamics Newton matrix K + c_v D + c_a M, or [M G^T; G 0]) the interface Schur PC takes the
+// multiplier rows onto its interface, whose dense Schur complement is factored with pivoting; else
+// MUMPS on any number of ranks (PETSc's own LU does not pivot; a static mechanism's K is singular).
+PetscErrorCode setDirectSolverDefaults(KSP ksp, bool saddlePoint = false, bool regularInterior = false);
 
 }  // namespace strand::solvers
