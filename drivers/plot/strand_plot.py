@@ -235,36 +235,39 @@ def cmd_belt(a):
 
     f = h5py.File(a.file, "r")
     frames = f.get("frames")
-    if frames is None or len(frames.keys()) == 0:
+    n = int(frames["time"].shape[0]) if frames is not None and "time" in frames else 0
+    if n == 0:
         sys.exit(f"'{a.file}' holds no frames")
-    names = sorted(frames.keys())
-    k = names[a.frame] if a.frame is not None else names[-1]
-    frame = frames[k]
-    bodies = [b for b in frame.keys() if isinstance(frame[b], h5py.Group) and "axial_force" in frame[b]]
+    k = a.frame if a.frame is not None else n - 1
+    if not -n <= k < n:
+        sys.exit(f"'{a.file}' holds {n} frames: --frame {a.frame} is not one of them")
+    k %= n
+    time = float(frames["time"][k])
+    bodies = [b for b in frames.keys() if isinstance(frames[b], h5py.Group) and "axial_force" in frames[b]]
     if not bodies:
         sys.exit(f"'{a.file}': no body with an axial_force field (cables write it)")
     body = a.body or bodies[0]
     if body not in bodies:
         sys.exit(f"'{a.file}': no body '{body}' with an axial_force field; bodies: {', '.join(bodies)}")
-    g = frame[body]
-    c = g["centerline"][:]
+    g = frames[body]  # a row per frame
+    c = g["centerline"][k]
     seg = np.linalg.norm(np.diff(c, axis=0), axis=1)
     s = np.concatenate(([0.0], np.cumsum(seg)))
     mid = 0.5 * (s[:-1] + s[1:])
-    T = g["axial_force"][:]
+    T = g["axial_force"][k]
     speeds = sorted(n for n in f["series"].keys() if n.startswith("pulley_") and n.endswith("_speed")) if "series" in f else []
     fig, axes = plt.subplots(2 if speeds else 1, 1, figsize=(6.4, 7.2 if speeds else 4.0), squeeze=False)
     ax = axes[0][0]
     ax.plot(mid, T, "-", color="k", lw=1.2, label="axial force")
     if "contact_state" in g:
-        state = g["contact_state"][:]
+        state = g["contact_state"][k]
         for value, color, label in ((1, "tab:blue", "on a pulley, sticking"), (2, "tab:red", "on a pulley, slipping")):
             on = state == value
             if on.any():
                 ax.fill_between(mid, 0, T, where=on, color=color, alpha=0.25, step="mid", label=label)
     ax.set_xlabel("arc length along the belt [m]")
     ax.set_ylabel("axial force [N]")
-    ax.set_title(a.title or f"{body} at t = {frame.attrs['time']:g} s: {a.file}", fontsize=9)
+    ax.set_title(a.title or f"{body} at t = {time:g} s: {a.file}", fontsize=9)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
     if speeds:

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <map>
 #include <set>
@@ -21,6 +22,7 @@
 
 #include "CommittedFile.hpp"
 #include "Hdf5.hpp"
+#include "RowDataset.hpp"
 
 namespace strand::io {
 
@@ -101,71 +103,6 @@ void writeXdmf(const std::string& path, const std::string& collectionName,
   writeFileAtomically(path, parts);
 }
 
-// Writes frames of a block: the property lists and dataspaces made once per block. Small datasets
-// are compact (their data in the object header: no separate allocation), and no object keeps
-// modification times (HDF5 would call time() and store a message per object).
-class FrameBlockWriter {
-public:
-  explicit FrameBlockWriter(const std::vector<BodyLayout>& bodies) : bodies_(bodies) {
-    gcpl_ = Hid(check(H5Pcreate(H5P_GROUP_CREATE), "cannot create property list"), H5Pclose);
-    check(H5Pset_obj_track_times(gcpl_.get(), false), "cannot set group properties");
-    for (H5D_layout_t layout : {H5D_COMPACT, H5D_CONTIGUOUS}) {
-      Hid dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "cannot create property list"), H5Pclose);
-      check(H5Pset_obj_track_times(dcpl.get(), false), "cannot set dataset properties");
-      check(H5Pset_layout(dcpl.get(), layout), "cannot set dataset layout");
-      (layout == H5D_COMPACT ? compact_ : contiguous_) = std::move(dcpl);
-    }
-    scalar_ = scalarSpace();
-    for (const BodyLayout& L : bodies) {
-      spaces_.push_back(simpleSpace({static_cast<hsize_t>(L.pointsPerBody), 3}));
-      spaces_.push_back(simpleSpace({static_cast<hsize_t>(L.nodes), static_cast<hsize_t>(L.coordsPerNode)}));
-      spaces_.push_back(simpleSpace({static_cast<hsize_t>(L.pointsPerBody - 1)}));
-    }
-  }
-
-  // /frames/<name> with attribute time and <body>/{centerline,coordinates,<cell fields>}
-  void write(hid_t parent, const std::string& name, double time, const std::vector<BodyFrame>& data) {
-    Hid g(check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl_.get(), H5P_DEFAULT),
-                "cannot create group '" + name + "'"),
-          H5Gclose);
-    {
-      Hid a(check(H5Acreate2(g.get(), "time", H5T_IEEE_F64LE, scalar_.get(), H5P_DEFAULT, H5P_DEFAULT),
-                  "cannot create attribute 'time'"),
-            H5Aclose);
-      check(H5Awrite(a.get(), H5T_NATIVE_DOUBLE, &time), "cannot write attribute 'time'");
-      a.close("cannot close attribute 'time'");
-    }
-    for (std::size_t b = 0; b < bodies_.size(); ++b) {
-      Hid bg(check(H5Gcreate2(g.get(), bodies_[b].name.c_str(), H5P_DEFAULT, gcpl_.get(), H5P_DEFAULT),
-                   "cannot create group '" + bodies_[b].name + "'"),
-             H5Gclose);
-      dataset(bg.get(), "centerline", spaces_[3 * b].get(), data[b].centerline);
-      dataset(bg.get(), "coordinates", spaces_[3 * b + 1].get(), data[b].coordinates);
-      for (std::size_t f = 0; f < data[b].cellFields.size(); ++f)
-        dataset(bg.get(), bodies_[b].cellFields[f].c_str(), spaces_[3 * b + 2].get(), data[b].cellFields[f]);
-      bg.close("cannot close group '" + bodies_[b].name + "'");
-    }
-    g.close("cannot close group '" + name + "'");
-  }
-
-private:
-  void dataset(hid_t loc, const char* name, hid_t space, const std::vector<double>& values) {
-    // compact storage holds up to 64 kB in the object header; larger data go contiguous
-    const hid_t dcpl = values.size() * sizeof(double) <= kCompactBytes ? compact_.get() : contiguous_.get();
-    Hid d(check(H5Dcreate2(loc, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
-                std::string("cannot create dataset '") + name + "'"),
-          H5Dclose);
-    check(H5Dwrite(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-          std::string("cannot write dataset '") + name + "'");
-    d.close(std::string("cannot close dataset '") + name + "'");
-  }
-
-  static constexpr std::size_t kCompactBytes = 16 << 10;
-  const std::vector<BodyLayout>& bodies_;
-  Hid gcpl_, compact_, contiguous_, scalar_;
-  std::vector<Hid> spaces_;
-};
-
 // Collective error kinds, broadcast from rank 0.
 enum ErrorKind : int { kOk = 0, kInput, kInvalidArgument, kLogic, kRuntime };
 
@@ -187,19 +124,21 @@ struct OutputWriter::Impl {
   // rank 0 only
   Hid file, framesGroup;
   struct Series {
-    Hid dset;
-    int width = 0;                // 0: scalar (1-D dataset), else the row width of a 2-D dataset
-    hsize_t rows = 0;             // rows in the file (written by earlier blocks)
-    std::vector<double> pending;  // buffered values, row-major, not yet in the file
+    RowDataset data;  // created by the first commit that has values for it
+    int width = 0;    // 0: scalar (1-D dataset), else the row width of a 2-D dataset
   };
   std::map<std::string, Series> series;
   Series* lastSeries = nullptr;  // the last series looked up (a run appends to a handful, in turn)
   std::string lastSeriesName;
-  struct PendingFrame {
-    double time;
-    std::vector<BodyFrame> data;
+  // /frames/time and, per body, /frames/<body>/{centerline, coordinates, <cell fields>}: one row
+  // per frame (see "Frames" in OutputWriter.hpp)
+  struct BodyFrames {
+    RowDataset centerline, coordinates;
+    std::vector<RowDataset> fields;
   };
-  std::vector<PendingFrame> pendingFrames;  // frames committedFrames, committedFrames + 1, ...
+  RowDataset frameTimes;
+  std::vector<BodyFrames> frameData;
+  std::vector<double> pendingTimes;  // frames committedFrames, committedFrames + 1, ... (buffered)
   int committedFrames = 0;
   std::size_t pendingBytes = 0;
   bool pendingSeries = false;
@@ -296,9 +235,38 @@ struct OutputWriter::Impl {
     }
   }
 
-  // One spatial collection over the bodies, whose centerlines live under `h5Group`.
-  std::string spatialGrid(const std::string& name, double time, const std::string& h5Group,
-                          const std::string& extra, bool withFields) const {
+  // The DataItem of a body's dataset `dataset` (centerline, coordinates or a cell field) whose
+  // shape is `dims`, indented for spatialGrid.
+  using DataItemFor = std::function<std::string(const std::string& body, const std::string& dataset, const std::string& dims)>;
+
+  // A whole dataset /<group>/<body>/<dataset> (a mode shape).
+  DataItemFor wholeDataset(const std::string& h5Group) const {
+    return [this, h5Group](const std::string& body, const std::string& dataset, const std::string& dims) {
+      return "            <DataItem Dimensions=\"" + dims + "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + h5Ref +
+             ":" + h5Group + "/" + body + "/" + dataset + "</DataItem>\n";
+    };
+  }
+
+  // Row k of /frames/<body>/<dataset>: an XDMF HyperSlab (start k, count 1 along the frames). The
+  // dataset is declared with k + 1 rows, which it has from frame k on, so frame k's text never
+  // changes as the run goes on.
+  DataItemFor frameRow(int k) const {
+    return [this, k](const std::string& body, const std::string& dataset, const std::string& dims) {
+      const bool matrix = dims.find(' ') != std::string::npos;
+      const std::string selection = matrix ? std::to_string(k) + " 0 0 1 1 1 1 " + dims : std::to_string(k) + " 0 1 1 1 " + dims;
+      return "            <DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"" + dims + "\">\n"
+             "              <DataItem Dimensions=\"" + std::string(matrix ? "3 3" : "3 2") + "\" Format=\"XML\">" + selection +
+             "</DataItem>\n"
+             "              <DataItem Dimensions=\"" + std::to_string(k + 1) + " " + dims +
+             "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + h5Ref + ":/frames/" + body + "/" + dataset +
+             "</DataItem>\n"
+             "            </DataItem>\n";
+    };
+  }
+
+  // One spatial collection over the bodies: each a polyline through its centerline.
+  std::string spatialGrid(const std::string& name, double time, const std::string& extra, bool withFields,
+                          const DataItemFor& item) const {
     std::ostringstream x;
     x << "      <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
     x << "        <Time Value=\"" << formatDouble(time) << "\"/>\n";
@@ -314,14 +282,11 @@ struct OutputWriter::Impl {
         << "/connectivity</DataItem>\n";
       x << "          </Topology>\n";
       x << "          <Geometry GeometryType=\"XYZ\">\n";
-      x << "            <DataItem Dimensions=\"" << L.pointsPerBody
-        << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5Ref << ":" << h5Group
-        << "/" << body << "/centerline</DataItem>\n";
+      x << item(body, "centerline", std::to_string(L.pointsPerBody) + " 3");
       x << "          </Geometry>\n";
       for (const std::string& f : withFields ? L.cellFields : std::vector<std::string>{}) {
         x << "          <Attribute Name=\"" << xmlEscape(f) << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
-        x << "            <DataItem Dimensions=\"" << segments << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-          << h5Ref << ":" << h5Group << "/" << body << "/" << xmlEscape(f) << "</DataItem>\n";
+        x << item(body, xmlEscape(f), std::to_string(segments));
         x << "          </Attribute>\n";
       }
       x << "        </Grid>\n";
@@ -335,6 +300,8 @@ struct OutputWriter::Impl {
     std::set<std::string> names;
     for (const BodyLayout& L : bodies) {
       checkName(L.name, "body");
+      if (L.name == "time")
+        throw InputError("cannot create output file '" + path + "': a body cannot be named 'time' (/frames/time holds the frame times)");
       if (!names.insert(L.name).second)
         throw InputError("cannot create output file '" + path + "': duplicate body name '" + L.name + "'");
       if (L.elements < 1 || L.nodes < 1 || L.coordsPerNode < 1 || L.pointsPerBody < 2)
@@ -394,6 +361,20 @@ struct OutputWriter::Impl {
       }
       framesGroup = group(root, "frames");
       writeAttribute(framesGroup.get(), "count", 0);
+      // chunks of 64 kB (at least a frame): a few per block and dataset for a small model
+      constexpr std::size_t kChunk = 64 << 10;
+      frameTimes.create(framesGroup.get(), "time", {}, 8 << 10);
+      frameData.resize(bodies.size());
+      for (std::size_t b = 0; b < bodies.size(); ++b) {
+        const BodyLayout& L = bodies[b];
+        Hid g = group(framesGroup.get(), L.name);
+        frameData[b].centerline.create(g.get(), "centerline", {static_cast<hsize_t>(L.pointsPerBody), 3}, kChunk);
+        frameData[b].coordinates.create(g.get(), "coordinates",
+                                        {static_cast<hsize_t>(L.nodes), static_cast<hsize_t>(L.coordsPerNode)}, kChunk);
+        frameData[b].fields.resize(L.cellFields.size());
+        for (std::size_t f = 0; f < L.cellFields.size(); ++f)
+          frameData[b].fields[f].create(g.get(), L.cellFields[f], {static_cast<hsize_t>(L.pointsPerBody - 1)}, kChunk);
+      }
       Hid seriesGroup = group(root, "series");
       check(H5Fflush(root, H5F_SCOPE_GLOBAL), "cannot flush");
       commit(root);
@@ -402,6 +383,8 @@ struct OutputWriter::Impl {
       writeXdmf(xdmfPath, "frames", {});
       lastCommit = std::chrono::steady_clock::now();
     } catch (const std::exception& e) {
+      frameTimes = RowDataset();
+      frameData.clear();
       framesGroup.reset();
       file.reset();
       std::string reason = e.what();
@@ -413,10 +396,17 @@ struct OutputWriter::Impl {
   void writeFrame(double time, const std::vector<BodyFrame>& data) {
     requireOpen("writeFrame");
     checkFrames(data, "frame " + std::to_string(frames), true);
-    pendingFrames.push_back({time, data});
-    for (const BodyFrame& f : data) {
+    frameTimes.buffer(&time, 1);
+    pendingTimes.push_back(time);
+    for (std::size_t b = 0; b < data.size(); ++b) {
+      const BodyFrame& f = data[b];
+      frameData[b].centerline.buffer(f.centerline.data(), f.centerline.size());
+      frameData[b].coordinates.buffer(f.coordinates.data(), f.coordinates.size());
       pendingBytes += 8 * (f.centerline.size() + f.coordinates.size());
-      for (const std::vector<double>& c : f.cellFields) pendingBytes += 8 * c.size();
+      for (std::size_t k = 0; k < f.cellFields.size(); ++k) {
+        frameData[b].fields[k].buffer(f.cellFields[k].data(), f.cellFields[k].size());
+        pendingBytes += 8 * f.cellFields[k].size();
+      }
     }
     ++frames;
     // the first frame is committed at once: a file that a viewer opens early shows the start
@@ -451,7 +441,7 @@ struct OutputWriter::Impl {
   void appendSeries(const std::string& name, const double* values, std::size_t n, int width, const char* method) {
     requireOpen(method);
     Series& s = seriesFor(name, width, method);
-    s.pending.insert(s.pending.end(), values, values + n);
+    s.data.buffer(values, n);
     pendingBytes += 8 * n;
     pendingSeries = true;
     if (commitDue()) commitBlock();
@@ -463,44 +453,49 @@ struct OutputWriter::Impl {
     return std::chrono::duration<double>(now - lastCommit).count() >= policy.intervalSeconds;
   }
 
-  // Writes the buffered frames and series values, flushes and commits; then the .xmf names the new
-  // frames. On failure, the block is taken back (its frames deleted, the series cut back to their
-  // committed lengths, best effort) and dropped, so that the file and the .xmf stay consistent and
-  // the next frame takes the first index of the lost block; the exception propagates.
+  // Every frame dataset, for `f`.
+  template <class F>
+  void forFrameDatasets(F&& f) {
+    f(frameTimes);
+    for (BodyFrames& b : frameData) {
+      f(b.centerline);
+      f(b.coordinates);
+      for (RowDataset& d : b.fields) f(d);
+    }
+  }
+
+  // Writes the buffered frames and series values (one extent change and one write per dataset),
+  // flushes and commits; then the .xdmf2 names the new frames. On failure, the block is taken back
+  // (the datasets cut back to their committed rows, best effort) and dropped, so that the file and
+  // the .xdmf2 stay consistent and the next frame takes the first index of the lost block; the
+  // exception propagates.
   void commitBlock() {
     QuietHdf5 quiet;
     const int first = committedFrames;
-    const int n = static_cast<int>(pendingFrames.size());
+    const int n = static_cast<int>(pendingTimes.size());
     std::string grids;
     try {
       if (n > 0) {
-        FrameBlockWriter out(bodies);
-        for (int k = 0; k < n; ++k) {
-          const std::string name = formatIndex(first + k);
-          out.write(framesGroup.get(), name, pendingFrames[k].time, pendingFrames[k].data);
-          grids += spatialGrid("frame_" + name, pendingFrames[k].time, "/frames/" + name, "", true);
-        }
+        forFrameDatasets([](RowDataset& d) { d.write(); });
+        updateAttribute(framesGroup.get(), "count", first + n);
+        for (int k = 0; k < n; ++k)
+          grids += spatialGrid("frame_" + formatIndex(first + k), pendingTimes[k], "", true, frameRow(first + k));
       }
-      if (n > 0) updateAttribute(framesGroup.get(), "count", first + n);
-      for (auto& [name, s] : series)
-        if (!s.pending.empty()) appendRows(name, s);
+      for (auto& [name, s] : series) {
+        if (s.data.pendingValues() == 0) continue;
+        if (!s.data.created())  // chunks of 8 kB: a few per block, whatever the row width
+          s.data.create(file.get(), "/series/" + name,
+                        s.width == 0 ? std::vector<hsize_t>{} : std::vector<hsize_t>{static_cast<hsize_t>(s.width)}, 8 << 10);
+        s.data.write();
+      }
       check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "cannot flush");
       commit(file.get());
-      // The .xmf only ever names data that is already committed.
+      // The .xdmf2 only ever names data that is already committed.
       if (n > 0) writeXdmf(xdmfPath, "frames", {&frameGrids, &grids});
     } catch (...) {
-      for (int k = 0; k < n; ++k) {
-        const std::string name = formatIndex(first + k);
-        if (H5Lexists(framesGroup.get(), name.c_str(), H5P_DEFAULT) > 0) H5Ldelete(framesGroup.get(), name.c_str(), H5P_DEFAULT);
-      }
+      forFrameDatasets([](RowDataset& d) { d.rollback(); });
       overwriteIntAttribute(framesGroup.get(), "count", first);
-      for (auto& [name, s] : series) {
-        if (s.dset) {
-          hsize_t dims[2] = {s.rows, static_cast<hsize_t>(s.width)};
-          H5Dset_extent(s.dset.get(), dims);
-        }
-        s.pending.clear();
-      }
+      for (auto& [name, s] : series) s.data.rollback();
       H5Fflush(file.get(), H5F_SCOPE_GLOBAL);
       dropPending();
       frames = committedFrames;
@@ -508,47 +503,16 @@ struct OutputWriter::Impl {
     }
     committedFrames += n;
     frameGrids += grids;
-    for (auto& [name, s] : series) {
-      s.rows += s.width == 0 ? s.pending.size() : s.pending.size() / s.width;
-      s.pending.clear();
-    }
+    forFrameDatasets([](RowDataset& d) { d.committed(); });
+    for (auto& [name, s] : series) s.data.committed();
     dropPending();
   }
 
   void dropPending() {
-    pendingFrames.clear();
+    pendingTimes.clear();
     pendingBytes = 0;
     pendingSeries = false;
     lastCommit = std::chrono::steady_clock::now();
-  }
-
-  // Appends s.pending to /series/<name> (created on first use): one extent change and one write.
-  void appendRows(const std::string& name, Series& s) {
-    const std::string dpath = "/series/" + name;
-    const int rank = s.width == 0 ? 1 : 2;
-    const hsize_t width = s.width == 0 ? 1 : static_cast<hsize_t>(s.width);
-    if (!s.dset) {
-      // chunks of about 8 kB: a few per block, whatever the row width
-      hsize_t dims[2] = {0, width}, maxDims[2] = {H5S_UNLIMITED, width};
-      hsize_t chunk[2] = {std::max<hsize_t>(1, 1024 / width), width};
-      Hid space(check(H5Screate_simple(rank, dims, maxDims), "cannot create dataspace"), H5Sclose);
-      Hid dcpl(check(H5Pcreate(H5P_DATASET_CREATE), "cannot create property list"), H5Pclose);
-      check(H5Pset_chunk(dcpl.get(), rank, chunk), "cannot set chunking");
-      s.dset = Hid(check(H5Dcreate2(file.get(), dpath.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, dcpl.get(),
-                                    H5P_DEFAULT),
-                         "cannot create dataset '" + dpath + "'"),
-                   H5Dclose);
-    }
-    const hsize_t rows = s.pending.size() / width;
-    hsize_t newSize[2] = {s.rows + rows, width};
-    check(H5Dset_extent(s.dset.get(), newSize), "cannot extend dataset '" + dpath + "'");
-    Hid fspace(check(H5Dget_space(s.dset.get()), "cannot get dataspace of '" + dpath + "'"), H5Sclose);
-    hsize_t start[2] = {s.rows, 0}, count[2] = {rows, width};
-    check(H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
-          "cannot select in '" + dpath + "'");
-    Hid mspace(check(H5Screate_simple(rank, count, nullptr), "cannot create dataspace"), H5Sclose);
-    check(H5Dwrite(s.dset.get(), H5T_NATIVE_DOUBLE, mspace.get(), fspace.get(), H5P_DEFAULT, s.pending.data()),
-          "cannot write dataset '" + dpath + "'");
   }
 
   void writeModes(const std::vector<double>& freqs, const std::vector<std::vector<BodyFrame>>& shapes,
@@ -588,10 +552,9 @@ struct OutputWriter::Impl {
         }
         writeBodies(g.get(), shapes[m]);
         // ParaView steps through the modes as "time" = mode index; the frequency rides along.
-        grids += spatialGrid("mode_" + name, static_cast<double>(m), "/modes/" + name,
-                             "        <Information Name=\"frequency_hz\" Value=\"" +
-                                 formatDouble(freqs[m]) + "\"/>\n",
-                             false);
+        grids += spatialGrid("mode_" + name, static_cast<double>(m),
+                             "        <Information Name=\"frequency_hz\" Value=\"" + formatDouble(freqs[m]) + "\"/>\n",
+                             false, wholeDataset("/modes/" + name));
       }
       modes.close("cannot close group '/modes'");
       commitBlock();  // with whatever is buffered
@@ -635,8 +598,10 @@ struct OutputWriter::Impl {
         commitBlock();
         committed = true;
       });
-    for (auto& [name, s] : series) attempt([&] { s.dset.close("cannot close dataset '/series/" + name + "'"); });
+    for (auto& [name, s] : series) attempt([&] { s.data.close(); });
     series.clear();
+    forFrameDatasets([&](RowDataset& d) { attempt([&] { d.close(); }); });
+    frameData.clear();
     lastSeries = nullptr;
     attempt([&] { framesGroup.close("cannot close group '/frames'"); });
     if (file) {
@@ -656,7 +621,7 @@ struct OutputWriter::Impl {
 
 std::string xdmfPathFor(const std::string& h5Path) {
   const std::filesystem::path p(h5Path);
-  return (p.parent_path() / (p.stem().string() + ".xmf")).string();
+  return (p.parent_path() / (p.stem().string() + ".xdmf2")).string();
 }
 
 std::string modesXdmfPathFor(const std::string& h5Path) {

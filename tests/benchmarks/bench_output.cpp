@@ -10,14 +10,10 @@
 //   (c) run_over_bench: `strand run` of the spin-up as it is (the README's main job, output_every:
 //       100), its time per step (the solve's "wall time" over the steps), over the time per step
 //       of bench_dynamics' loop on the same scene in this process. Target <= 1.5.
-// Beside (a): hdf5_us_per_frame, the same five HDF5 objects per frame (two groups, one attribute,
-// two compact datasets) created by a plain HDF5 loop with OutputWriter's file settings and a flush
-// every 2,000 frames, no strand code: the floor of the frame layout that ParaView's readers need.
 // One JSON line per repetition and one summary line (median, min and max of each ratio over the
 // repetitions). Options: -repeat N (default 5), -t_end T (default: the scene's 20 s),
 // -strand PATH (default: this build's strand), -scene PATH (default: meshes/spin-up.yaml), -only_frames
 // (part (a) alone, no `strand run`).
-#include <hdf5.h>
 #include <petscsys.h>
 #include <petsctime.h>
 #include <unistd.h>
@@ -97,52 +93,6 @@ double integrate(const model::SceneDescription& scene, const std::string& out, d
   return t1 - t0;
 }
 
-// The HDF5 floor: `frames` frames of one body (points x 3 centerline, nodes x coords), as
-// OutputWriter writes them, in seconds per frame.
-double hdf5Floor(const fs::path& file, int frames, int points, int nodes, int coords) {
-  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
-  H5Pset_meta_block_size(fapl, 1 << 20);
-  H5Pset_small_data_block_size(fapl, 1 << 20);
-  const hid_t f = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-  const hid_t all = H5Gcreate2(f, "frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  const hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE), dcpl = H5Pcreate(H5P_DATASET_CREATE);
-  H5Pset_obj_track_times(gcpl, false);
-  H5Pset_obj_track_times(dcpl, false);
-  H5Pset_layout(dcpl, H5D_COMPACT);
-  const hsize_t dc[2] = {hsize_t(points), 3}, dq[2] = {hsize_t(nodes), hsize_t(coords)};
-  const hid_t sc = H5Screate_simple(2, dc, nullptr), sq = H5Screate_simple(2, dq, nullptr), s0 = H5Screate(H5S_SCALAR);
-  std::vector<double> data(3 * points + nodes * coords, 1.0);
-  const double t0 = now();
-  for (int k = 0; k < frames; ++k) {
-    char name[16];
-    std::snprintf(name, sizeof name, "%05d", k);
-    const hid_t g = H5Gcreate2(all, name, H5P_DEFAULT, gcpl, H5P_DEFAULT);
-    const hid_t a = H5Acreate2(g, "time", H5T_IEEE_F64LE, s0, H5P_DEFAULT, H5P_DEFAULT);
-    H5Awrite(a, H5T_NATIVE_DOUBLE, data.data());
-    H5Aclose(a);
-    const hid_t b = H5Gcreate2(g, "beam", H5P_DEFAULT, gcpl, H5P_DEFAULT);
-    hid_t d = H5Dcreate2(b, "centerline", H5T_IEEE_F64LE, sc, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
-    H5Dclose(d);
-    d = H5Dcreate2(b, "coordinates", H5T_IEEE_F64LE, sq, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data() + 3 * points);
-    H5Dclose(d);
-    H5Gclose(b);
-    H5Gclose(g);
-    if (k % 2000 == 1999) H5Fflush(f, H5F_SCOPE_GLOBAL);
-  }
-  H5Sclose(sc);
-  H5Sclose(sq);
-  H5Sclose(s0);
-  H5Pclose(gcpl);
-  H5Pclose(dcpl);
-  H5Gclose(all);
-  H5Fclose(f);
-  H5Pclose(fapl);
-  return (now() - t0) / frames;
-}
-
 struct RunTiming {
   double process = 0.0, solve = 0.0;  // process wall time; the run's own "wall time" line
 };
@@ -212,10 +162,6 @@ int main(int argc, char** argv) {
   std::ofstream(endScene) << withOutputEvery(text, "100000000");
   const model::SceneDescription scene = io::readScene(mainScene.string());
 
-  const io::BodyLayout layout = [&] {
-    solvers::Problem p(PETSC_COMM_WORLD, scene);
-    return io::bodyLayouts(p.model(), scene.output.samplesPerElement).at(0);
-  }();
   std::vector<double> a, b, c;
   for (PetscInt rep = 0; rep < repeat; ++rep) {
     long steps = 0, framedSteps = 0;
@@ -224,13 +170,12 @@ int main(int argc, char** argv) {
     const double framedRun = integrate(scene, (dir / "frames.h5").string(), &framed, &framedSteps);
     const double frameSeconds = framed / std::max(framedSteps, 1L);
     a.push_back(frameSeconds / stepSeconds);
-    const double floorSeconds = hdf5Floor(dir / "floor.h5", 5000, layout.pointsPerBody, layout.nodes, layout.coordsPerNode);
     if (onlyFrames) {
       PetscCall(PetscPrintf(PETSC_COMM_WORLD,
                             "{\"bench\": \"output_frames\", \"rep\": %d, \"steps\": %ld, \"us_per_step\": %.2f, "
-                            "\"us_per_frame\": %.2f, \"hdf5_us_per_frame\": %.2f, \"framed_run_us_per_step\": %.2f, "
+                            "\"us_per_frame\": %.2f, \"framed_run_us_per_step\": %.2f, "
                             "\"frame_over_step\": %.3f}\n",
-                            static_cast<int>(rep), steps, 1e6 * stepSeconds, 1e6 * frameSeconds, 1e6 * floorSeconds,
+                            static_cast<int>(rep), steps, 1e6 * stepSeconds, 1e6 * frameSeconds,
                             1e6 * framedRun / std::max(framedSteps, 1L), a.back()));
       continue;
     }
@@ -241,11 +186,11 @@ int main(int argc, char** argv) {
     c.push_back(main.solve / std::max(steps, 1L) / stepSeconds);
     PetscCall(PetscPrintf(PETSC_COMM_WORLD,
                           "{\"bench\": \"output\", \"rep\": %d, \"steps\": %ld, \"us_per_step\": %.2f, "
-                          "\"us_per_frame\": %.2f, \"hdf5_us_per_frame\": %.2f, \"framed_run_us_per_step\": %.2f, "
+                          "\"us_per_frame\": %.2f, \"framed_run_us_per_step\": %.2f, "
                           "\"frame_over_step\": %.3f, \"every_step_s\": %.3f, \"end_only_s\": %.3f, \"every_step_solve_s\": %.3f, "
                           "\"end_only_solve_s\": %.3f, \"every_step_over_end_only\": %.3f, "
                           "\"run_us_per_step\": %.2f, \"run_process_s\": %.3f, \"run_over_bench\": %.3f}\n",
-                          static_cast<int>(rep), steps, 1e6 * stepSeconds, 1e6 * frameSeconds, 1e6 * floorSeconds,
+                          static_cast<int>(rep), steps, 1e6 * stepSeconds, 1e6 * frameSeconds,
                           1e6 * framedRun / std::max(framedSteps, 1L), a.back(), every.process, end.process,
                           every.solve, end.solve, b.back(), 1e6 * main.solve / std::max(steps, 1L), main.process,
                           c.back()));

@@ -4,7 +4,7 @@
 usage: kill_test.py STRAND_BINARY [--kills N] [--max-delay S] [--seed K] [--keep DIR]
 
 Requirement (issue 32 item 4): a run killed at any instant leaves its HDF5 file readable up to its
-last complete frame: h5py opens it, /frames has `count` frames, every frame that the .xmf names
+last complete frame: h5py opens it, /frames has `count` frames, every frame that the .xdmf2 names
 exists and reads back whole (centerline and coordinates of every body), and every /series dataset
 reads. A kill before the first commit leaves no file at all, which is fine too.
 
@@ -56,12 +56,15 @@ def check(h5, xmf):
     with h5py.File(h5, "r") as f:
         count = int(f["frames"].attrs["count"])
         if listed > count:
-            raise RuntimeError("the .xmf names %d frames, /frames has %d" % (listed, count))
-        for k in range(count):
-            for body in f["bodies"]:
-                g = f["frames/%05d/%s" % (k, body)]
-                g["centerline"][()]
-                g["coordinates"][()]
+            raise RuntimeError("the .xdmf2 names %d frames, /frames has %d" % (listed, count))
+        if f["frames/time"].shape[0] != count:
+            raise RuntimeError("/frames has count %d but %d times" % (count, f["frames/time"].shape[0]))
+        for body in f["bodies"]:
+            g = f["frames/%s" % body]
+            for ds in ("centerline", "coordinates"):
+                if g[ds].shape[0] != count:
+                    raise RuntimeError("/frames/%s/%s has %d rows, count is %d" % (body, ds, g[ds].shape[0], count))
+                g[ds][()]
         for name in f["series"]:
             f["series"][name][()]
     return count
@@ -82,7 +85,7 @@ def main():
     scene = os.path.join(work, "kill.yaml")
     with open(scene, "w") as f:
         f.write(SCENE)
-    h5, xmf = os.path.join(work, "kill.h5"), os.path.join(work, "kill.xmf")
+    h5, xmf = os.path.join(work, "kill.h5"), os.path.join(work, "kill.xdmf2")
     env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1", OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     bad = none = 0

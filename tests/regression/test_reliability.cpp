@@ -106,8 +106,8 @@ with h5py.File(out, 'r+') as f:
 
 // Item 2: a restart refused for a mismatch (here the checkpoint's rho_inf) is refused before any
 // output is opened: an existing result given with -o keeps its frames byte for byte, and without -o
-// no <stem>_restart.h5 or .xmf is left behind. (Before: the 6-frame file was left with 0 frames, and
-// an empty <stem>_restart.h5 and .xmf stayed.)
+// no <stem>_restart.h5 or .xdmf2 is left behind. (Before: the 6-frame file was left with 0 frames, and
+// an empty <stem>_restart.h5 and .xdmf2 stayed.)
 TEST(Reliability, ARefusedRestartLeavesEveryOutputAsItWas) {
   const fs::path dir = scratchDir("refused-restart");
   writeFile(dir / "p.yaml", kPendulum);
@@ -117,13 +117,13 @@ TEST(Reliability, ARefusedRestartLeavesEveryOutputAsItWas) {
   const fs::path result = dir / "result.h5", ckpt = dir / "result.ckpt.h5";
   auto r = runCommand(run("run " + (dir / "p.yaml").string() + " -o " + result.string() + " -checkpoint_every 20"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  const std::string before = readText(result), xmf = readText(dir / "result.xmf");
+  const std::string before = readText(result), xmf = readText(dir / "result.xdmf2");
   auto x = runCommand(run("run " + (dir / "q.yaml").string() + " -restart " + ckpt.string() + " -o " + result.string() +
                           " -overwrite"));
   EXPECT_EQ(x.exitCode, 2) << x.output;
   EXPECT_NE(x.output.find("the checkpoint was written by generalized-alpha rho_inf 0.9"), std::string::npos) << x.output;
   EXPECT_TRUE(readText(result) == before) << "the refused restart changed " << result;
-  EXPECT_EQ(readText(dir / "result.xmf"), xmf);
+  EXPECT_EQ(readText(dir / "result.xdmf2"), xmf);
   if (haveH5py()) {
     auto h = runCommand("/usr/bin/python3 -c \"import h5py; print(h5py.File('" + result.string() +
                         "')['frames'].attrs['count'])\"");

@@ -4,12 +4,15 @@
 usage: check_output.py FILE.h5 [FILE.h5 ...] [--pvpython] | --compare-final A.h5 B.h5 [A2.h5 B2.h5 ...]
 
 Checks the layout written by strand::io::OutputWriter (include/strand/io/OutputWriter.hpp):
-root attributes, /bodies/<body>/connectivity, /frames/NNNNN/<body>/{centerline,coordinates}
-(present for every body, right shapes, finite), /series (one length for all), /modes, and that
-every HDF reference in <stem>.xmf and <stem>_modes.xmf names an existing dataset of the stated
-dimensions. A scene of rigid bodies only has an empty /bodies (its state is in /series/rigid_*).
-With --pvpython it also opens the .xmf files with ParaView's Xdmf3 reader when ParaView's Python
-modules (python3-paraview) or a pvpython executable are available, and skips that step otherwise.
+root attributes, /bodies/<body>/connectivity, /frames/time and /frames/<body>/{centerline,
+coordinates} (a row per frame for every body, right shapes, finite), /series (one length for all),
+/modes, and that every HDF reference in <stem>.xdmf2 and <stem>_modes.xmf names an existing
+dataset of the stated dimensions (a HyperSlab's dataset at least as many rows as declared, the
+selection inside it). A scene of rigid bodies only has an empty /bodies (its state is in
+/series/rigid_*). With --pvpython it also opens the XDMF files in ParaView as a user's
+OpenDataFile does (which picks the reader by extension: the XDMF 2 reader for .xdmf2, an Xdmf3
+reader for .xmf) when ParaView's Python modules (python3-paraview) or a pvpython executable are
+available, and skips that step otherwise.
 Several files: one JSON line each.
 
 --compare-final A.h5 B.h5 compares the final states of two dynamic runs of one scene (e.g. an
@@ -53,8 +56,9 @@ def attr(obj, name, errors, where):
     return v
 
 
-def check_bodies_group(parent, where, layouts, errors):
-    """parent: a frame or mode group; every body needs finite centerline and coordinates."""
+def check_bodies_group(parent, where, layouts, errors, rows=None):
+    """parent: a mode group, or /frames (rows: the frame count, a leading dimension); every body
+    needs finite centerline and coordinates."""
     for name, lay in layouts.items():
         for ds, shape in (("centerline", (lay["points"], 3)), ("coordinates", (lay["nodes"], lay["coords_per_node"]))):
             path = "%s/%s/%s" % (where, name, ds)
@@ -62,6 +66,8 @@ def check_bodies_group(parent, where, layouts, errors):
                 errors.append("%s: missing" % path)
                 continue
             d = parent[name][ds]
+            if rows is not None:
+                shape = (rows,) + shape
             if d.shape != shape:
                 errors.append("%s: shape %s, expected %s" % (path, d.shape, shape))
             if not np.all(np.isfinite(d[()])):
@@ -94,6 +100,16 @@ def check_xdmf(xmf, h5, errors):
     if len(set(times)) != len(times):
         errors.append("%s: repeated Time values (ParaView shows only one of them)" % xmf)
     h5name = os.path.basename(h5.filename)
+    slabs = {}  # the HDF DataItem of a HyperSlab -> its selection (start, stride, count)
+    for slab in root.iter("DataItem"):
+        if slab.get("ItemType") == "HyperSlab":
+            kids = slab.findall("./DataItem")
+            if len(kids) != 2 or kids[0].get("Format") != "XML" or kids[1].get("Format") != "HDF":
+                errors.append("%s: a HyperSlab needs an XML selection and an HDF DataItem" % xmf)
+                continue
+            sel = [int(v) for v in kids[0].text.split()]
+            n = len(sel) // 3
+            slabs[kids[1]] = (sel[:n], sel[n:2 * n], sel[2 * n:], slab.get("Dimensions", ""))
     for item in root.iter("DataItem"):
         if item.get("Format") != "HDF":
             continue
@@ -107,17 +123,26 @@ def check_xdmf(xmf, h5, errors):
             errors.append("%s: reference '%s': no such dataset" % (xmf, ref))
             continue
         dims = tuple(int(x) for x in item.get("Dimensions", "").split())
-        if dims != h5[dpath].shape:
-            errors.append("%s: reference '%s': Dimensions %s, dataset has %s" % (xmf, ref, dims, h5[dpath].shape))
+        shape = h5[dpath].shape
+        if item in slabs:  # declared rows <= the dataset's (it grows); the selection inside them
+            start, stride, count, outer = slabs[item]
+            if len(dims) != len(shape) or dims[0] > shape[0] or dims[1:] != shape[1:]:
+                errors.append("%s: reference '%s': Dimensions %s, dataset has %s" % (xmf, ref, dims, shape))
+            elif len(start) != len(dims) or any(s + (c - 1) * st >= d for s, st, c, d in zip(start, stride, count, dims)):
+                errors.append("%s: reference '%s': selection %s outside %s" % (xmf, ref, (start, stride, count), dims))
+            elif np.prod(count) != np.prod([int(x) for x in outer.split()]):
+                errors.append("%s: reference '%s': HyperSlab Dimensions '%s' for a selection of %s" % (xmf, ref, outer, count))
+        elif dims != shape:
+            errors.append("%s: reference '%s': Dimensions %s, dataset has %s" % (xmf, ref, dims, shape))
     return info
 
 
 PV_SNIPPET = r"""
 import json, sys
-from paraview.simple import Xdmf3ReaderS, UpdatePipeline
+from paraview.simple import OpenDataFile, UpdatePipeline
 out = {}
 for f in sys.argv[1:]:
-    r = Xdmf3ReaderS(FileName=[f])
+    r = OpenDataFile(f)  # the reader ParaView picks for the extension, as a user's double click
     times = r.TimestepValues
     times = [] if times is None else (list(times) if hasattr(times, "__len__") else [float(times)])
     UpdatePipeline(time=times[-1] if times else None, proxy=r)
@@ -130,11 +155,11 @@ print(json.dumps(out))
 
 
 def check_paraview(xmfs, expected, errors):
-    """Open the .xmf files with ParaView's Xdmf3 reader; 'skipped' when ParaView is absent.
+    """Open the XDMF files in ParaView (OpenDataFile); 'skipped' when ParaView is absent.
 
     expected[xmf] = (steps, points, cells, bounds of the last step): what the reader must show."""
     if not xmfs:
-        return "skipped (no .xmf)"
+        return "skipped (no XDMF file)"
     if importlib.util.find_spec("paraview") is not None:  # Debian python3-paraview
         interpreter = sys.executable
     else:
@@ -172,17 +197,24 @@ def check_paraview(xmfs, expected, errors):
 
 
 def expected_steps(h5, modes):
-    g = h5.get("modes" if modes else "frames", {})
+    if not modes:
+        return int(h5["frames/time"].shape[0]) if "frames/time" in h5 else 0
+    g = h5.get("modes", {})
     return len([k for k in g.keys() if k != "frequencies_hz"])
 
 
 def last_bounds(h5, modes):
     """[xmin, xmax, ymin, ymax, zmin, zmax] over all bodies' centerlines of the last frame or mode."""
-    g = h5.get("modes" if modes else "frames")
-    names = sorted(k for k in g.keys() if k != "frequencies_hz") if g is not None else []
-    if not names:
-        return None
-    parts = [b["centerline"][()] for b in g[names[-1]].values() if isinstance(b, h5py.Group) and "centerline" in b]
+    if modes:
+        g = h5.get("modes")
+        names = sorted(k for k in g.keys() if k != "frequencies_hz") if g is not None else []
+        if not names:
+            return None
+        parts = [b["centerline"][()] for b in g[names[-1]].values() if isinstance(b, h5py.Group) and "centerline" in b]
+    else:
+        if expected_steps(h5, False) == 0:
+            return None
+        parts = [b["centerline"][-1] for b in h5["frames"].values() if isinstance(b, h5py.Group) and "centerline" in b]
     if not parts:  # rigid bodies only: nothing drawn
         return None
     pts = np.concatenate(parts)
@@ -221,29 +253,29 @@ def check_file(h5, path, summary, errors):
     valid_layouts = {n: l for n, l in layouts.items()
                      if None not in (l["points"], l["nodes"], l["coords_per_node"])}
 
-    # frames
+    # frames: /frames/time and a row per frame in every body's datasets
     times = []
+    n_frames = 0
     if "frames" not in h5:
         errors.append("/frames: missing")
-        names = []
+    elif "time" not in h5["frames"] or not isinstance(h5["frames"]["time"], h5py.Dataset):
+        errors.append("/frames/time: missing")
     else:
         frames = h5["frames"]
-        names = sorted(k for k in frames.keys())
-        if names != ["%05d" % i for i in range(len(names))]:
-            errors.append("/frames: groups are not 00000..%05d" % (len(names) - 1))
+        n_frames = int(frames["time"].shape[0])
         count = attr(frames, "count", errors, "/frames")
-        if count is not None and count != len(names):
-            errors.append("/frames: count attribute %s but %d frame groups" % (count, len(names)))
-        for n in names:
-            t = attr(frames[n], "time", errors, "/frames/" + n)
-            if t is not None:
-                if not math.isfinite(t):
-                    errors.append("/frames/%s: time is not finite" % n)
-                times.append(t)
-            check_bodies_group(frames[n], "/frames/" + n, valid_layouts, errors)
-    if not names:
+        if count is not None and count != n_frames:
+            errors.append("/frames: count attribute %s but %d rows in /frames/time" % (count, n_frames))
+        times = [float(t) for t in frames["time"][()]]
+        if not all(math.isfinite(t) for t in times):
+            errors.append("/frames/time: not finite")
+        extra = sorted(k for k in frames.keys() if k != "time" and k not in valid_layouts)
+        if extra:
+            errors.append("/frames: %s are not bodies" % extra)
+        check_bodies_group(frames, "/frames", valid_layouts, errors, rows=n_frames)
+    if n_frames == 0:
         errors.append("/frames: no frames")
-    summary["frames"] = len(names)
+    summary["frames"] = n_frames
     summary["time_range"] = [min(times), max(times)] if times else None
 
     # series (values may legitimately be inf/nan on a diverged run: only the shape is checked)
@@ -279,13 +311,13 @@ def check_file(h5, path, summary, errors):
         for g in groups:
             check_bodies_group(m[g], "/modes/" + g, valid_layouts, errors)
 
-    # XDMF next to the file: <stem>.xmf always, <stem>_modes.xmf when there are modes
+    # XDMF next to the file: <stem>.xdmf2 always, <stem>_modes.xmf when there are modes
     stem = os.path.splitext(path)[0]
     xmfs = []
     expected = {}
     summary["xdmf"] = []
     n_modes = len(summary["modes"]) if summary.get("modes") else 0
-    for xmf, want, required in ((stem + ".xmf", len(names), True),
+    for xmf, want, required in ((stem + ".xdmf2", n_frames, True),
                                 (stem + "_modes.xmf", n_modes, "modes" in h5)):
         if not os.path.exists(xmf):
             if required:
@@ -306,12 +338,12 @@ def check_file(h5, path, summary, errors):
 def final_state(h5):
     """(series time, last frame's time, state vector, kinetic energy) at the end of a dynamic run's output."""
     frames = h5["frames"]
-    last = frames[sorted(frames.keys())[-1]]
-    parts = [last[b]["coordinates"][()].ravel() for b in sorted(last.keys())]
+    bodies = sorted(b for b in frames.keys() if isinstance(frames[b], h5py.Group))
+    parts = [frames[b]["coordinates"][-1].ravel() for b in bodies]
     s = h5["series"]
     parts += [np.array([s[k][-1]]) for k in sorted(s.keys()) if k.startswith("rigid_")]
     state = np.concatenate(parts) if parts else np.zeros(0)
-    return float(s["time"][-1]), float(last.attrs["time"]), state, float(s["kinetic_energy"][-1])
+    return float(s["time"][-1]), float(frames["time"][-1]), state, float(s["kinetic_energy"][-1])
 
 
 def compare_final(a, b):

@@ -1,4 +1,4 @@
-// Run output: one HDF5 file per run plus XDMF 3 files that ParaView opens.
+// Run output: one HDF5 file per run plus XDMF files that ParaView opens.
 //
 // Layout of <path> (all written by rank 0 with the serial HDF5 API; the caller gathers first):
 //   /                          attrs strand_version, scene_file, analysis (strings), dimension (int),
@@ -7,38 +7,44 @@
 //                              points_per_body (int)
 //   /bodies/<body>/connectivity   int32 (pointsPerBody-1) x 2: segment k joins centerline points k, k+1
 //   /frames                    attr count (int): frames written so far
-//   /frames/NNNNN              attr time (double): physical time or load factor; NNNNN = 00000, 00001, ...
-//   /frames/NNNNN/<body>/centerline    double pointsPerBody x 3 (2D runs: z = 0)
-//   /frames/NNNNN/<body>/coordinates   double nodes x coordsPerNode
+//   /frames/time               double, frames: the physical time or load factor of each frame
+//   /frames/<body>/centerline  double frames x pointsPerBody x 3 (2D runs: z = 0)
+//   /frames/<body>/coordinates double frames x nodes x coordsPerNode
+//   /frames/<body>/<field>     double frames x (pointsPerBody - 1): the layout's cell fields
 //   /series/<name>             double, 1-D, chunked, unlimited; one value per writeScalarSeries() call,
 //                              or 2-D rows x width, one row per writeVectorSeries() call
 //   /modes/frequencies_hz      double, one per mode
-//   /modes/NNNNN/<body>/{centerline,coordinates}   as for frames, one group per mode
+//   /modes/NNNNN/<body>/{centerline,coordinates}   one group per mode
 //
-// One 2-D dataset per frame and body, never a hyperslab into a big time dataset: ParaView's Xdmf3
-// readers cannot follow one. <stem>.xmf holds a temporal collection (one spatial collection over the
-// bodies per frame: Polyline topology = the body's connectivity, XYZ geometry = the frame's
-// centerline); <stem>_modes.xmf holds the mode shapes as a collection whose "time" is the mode
-// index. Both reference the .h5 file by basename, so the pair can be moved together.
+// Frames: one extendible dataset per body and quantity, a row per frame (the layout of PyLith's
+// HDF5 output), so a frame costs a copy into the block buffer and a block one write per dataset,
+// and a history is one array to a reader (h5py: f['frames/beam/coordinates'][:, -1, :2]). A body
+// cannot be named `time`. <stem>.xdmf2 holds a temporal collection (one spatial collection over the
+// bodies per frame: Polyline topology = the body's connectivity, XYZ geometry = row k of the
+// centerline) whose DataItems are XDMF HyperSlabs of those datasets. ParaView opens .xdmf2 files
+// with its XDMF (version 2) reader, which follows HyperSlabs; its Xdmf3 readers (the ones it picks
+// for .xmf) do not and would show empty geometry (ParaView 5.11, checked with pvpython:
+// tests/regression/paraview_open.py). <stem>_modes.xmf holds the mode shapes as a collection whose
+// "time" is the mode index, plain datasets that every reader opens. Both reference the .h5 file by
+// basename, so the files can be moved together.
 //
 // Buffering (issue 36 item 6): writeFrame, writeScalarSeries and writeVectorSeries only copy their
 // data into memory on rank 0 (a frame of a 10-element beam: about 1.4 kB). A block of buffered data
 // is written and committed (below) when CommitPolicy::intervalSeconds (default 2 s) have passed
 // since the last commit or CommitPolicy::maxBytes (default 4 MB) are buffered, checked at each
 // write; and always for the first frame (a viewer opened early sees the start), at flush(), at
-// writeModes(), at close() and in the destructor (unwinding after a solver error). Each series is
-// extended and written once per block. setAttribute() writes at once into the work file (below),
-// so attributes too are published by the next commit. Cost per frame of the 10-element beam: about
-// 60 us of HDF5 object creation (two groups, two datasets, one attribute) against 11 ms with a
-// commit per frame; series values cost a copy (docs/performance.md, "Output").
+// writeModes(), at close() and in the destructor (unwinding after a solver error). Each frame
+// dataset and series is extended and written once per block. setAttribute() writes at once into
+// the work file (below), so attributes too are published by the next commit. A frame or a series
+// value costs a copy (docs/performance.md, "Output").
 //
 // Crash safety (issue 32 item 4): the .h5 file changes on disk only by atomic commits. HDF5 writes
 // into a hidden work file next to it (.<name>.strand-work); a commit flushes (H5Fflush: the work
 // file is then a consistent HDF5 file), renames the flushed file over <path> atomically and catches
-// the work file up (src/io/CommittedFile.hpp). Only then is the .xmf rewritten, atomically too
-// (<stem>.xmf.tmp, then rename()). So a run that is killed at any instant, or diverges, leaves
+// the work file up (src/io/CommittedFile.hpp). Only then is the .xdmf2 rewritten, atomically too
+// (<stem>.xdmf2.tmp, then rename()). So a run that is killed at any instant, or diverges, leaves
 // <path> as it was at its last commit: readable, every frame and series value up to that commit,
-// and an .xmf that never names missing data. A kill -9 loses what was buffered since: at most
+// and an .xdmf2 that never names missing data. A kill -9 loses what was buffered since: at most
 // intervalSeconds of the run (or maxBytes of output). In-place writes with a flush per frame did not
 // give that: a kill during a flush or a metadata eviction left /frames unreadable (3 of 150 kill -9
 // tests). A block whose commit fails is taken back (its frames deleted, the series cut back; best
@@ -46,9 +52,8 @@
 // the next frame takes the first lost index.
 // Costs: one more copy of what each commit wrote, and the work file (as large as the result) until
 // close(); a killed run leaves it behind. Readers may open <path> during the run (it is always a
-// committed state). The .xmf is rewritten whole at each commit (about 0.6 kB per body and frame).
-// File format: HDF5 1.8 (libver bounds v18: groups keep their links in the object header; frame
-// datasets up to 16 kB are compact), read by any HDF5 since 1.8, ParaView and h5py included.
+// committed state). The .xdmf2 is rewritten whole at each commit (about 1 kB per body and frame).
+// File format: HDF5 1.8 (libver bounds v18), read by any HDF5 since 1.8, ParaView and h5py included.
 //
 // Parallel use: every method is collective over `comm` (all ranks call it); only rank 0 touches
 // files, and its success or failure is broadcast so that all ranks return or throw together. Data
@@ -79,7 +84,7 @@ struct BodyLayout {
   int coordsPerNode = 0;
   int pointsPerBody = 0;  // centerline sample points, >= 2
   // Fields each frame carries along the centerline, one value per segment (pointsPerBody - 1):
-  // /frames/<k>/<body>/<field>, an XDMF cell attribute (e.g. axial_force, contact_pressure).
+  // /frames/<body>/<field>, an XDMF cell attribute (e.g. axial_force, contact_pressure).
   std::vector<std::string> cellFields;
 };
 
@@ -94,13 +99,13 @@ struct RunInfo {
   int dimension = 3;
 };
 
-// The XDMF files an OutputWriter writes next to `h5Path`: <stem>.xmf and <stem>_modes.xmf.
+// The XDMF files an OutputWriter writes next to `h5Path`: <stem>.xdmf2 and <stem>_modes.xmf.
 std::string xdmfPathFor(const std::string& h5Path);
 std::string modesXdmfPathFor(const std::string& h5Path);
 
 class OutputWriter {
 public:
-  // Writes the root attributes, /bodies and an empty <stem>.xmf; an existing `path` is replaced (at
+  // Writes the root attributes, /bodies, the empty /frames datasets and an empty <stem>.xdmf2; an existing `path` is replaced (at
   // this first commit, atomically). The caller decides whether it may be (drivers/FileSafety.hpp).
   OutputWriter(MPI_Comm comm, std::string path, RunInfo info, std::vector<BodyLayout> bodies);
   ~OutputWriter();
@@ -118,7 +123,8 @@ public:
   void setCommitPolicy(const CommitPolicy& policy);  // not collective; throws std::invalid_argument for < 0 s
   CommitPolicy commitPolicy() const;
 
-  // Adds /frames/NNNNN for the next frame (buffered); `frames` has one entry per body, in layout order.
+  // Appends the next frame (buffered): a row of /frames/time and of each /frames/<body> dataset;
+  // `frames` has one entry per body, in layout order.
   void writeFrame(double time, const std::vector<BodyFrame>& frames);
   // Appends `value` to /series/<name> (1-D), creating the dataset on first use (buffered: one
   // dataset extension and one write per series and block).
@@ -146,7 +152,7 @@ public:
   void close();
 
   const std::string& path() const;
-  std::string xdmfPath() const;       // <stem>.xmf next to path()
+  std::string xdmfPath() const;       // <stem>.xdmf2 next to path()
   std::string modesXdmfPath() const;  // <stem>_modes.xmf next to path()
   int framesWritten() const;          // same value on all ranks
 
