@@ -1,6 +1,6 @@
 // `strand run SCENE` for a hub_beam scene (src/ffr, issue 5): the floating-frame hub-beam of seed
 // 001, integrated on PETSc TS (ffr/HubBeamDynamics.hpp), written as HDF5 + XDMF like any run:
-//   /bodies/beam, /frames/NNNNN/beam/centerline: the deformed beam in the inertial frame, sampled at
+//   /bodies/beam, /frames/beam/centerline (a row per frame): the deformed beam in the inertial frame, sampled at
 //       41 points (coordinates: the deformation coordinates d);
 //   /series/{time, theta, omega, tip_ux, tip_uy, tip_vy, kinetic, strain, hub_torque, hub_work,
 //       energy, newton_iterations, rejected_steps}, one value per step;
