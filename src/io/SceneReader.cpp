@@ -452,7 +452,8 @@ const Choice<model::JointType> kJointTypes[] = {{"pin", model::JointType::Pin},
 const Choice<model::SupportType> kSupportTypes[] = {{"clamped", model::SupportType::Clamped},
                                                     {"clamped_unstretched", model::SupportType::ClampedUnstretched},
                                                     {"pinned", model::SupportType::Pinned},
-                                                    {"fixed", model::SupportType::Fixed}};
+                                                    {"fixed", model::SupportType::Fixed},
+                                                    {"sliding", model::SupportType::Sliding}};
 
 const Choice<model::ModalMethod> kModalMethods[] = {{"auto", model::ModalMethod::Auto},
                                                     {"eps", model::ModalMethod::Eps},
@@ -1121,7 +1122,9 @@ private:
         if (b.name == s.at.body && k.layout[k.orientationBlock] == elements::BlockRole::AxialGradient) hubClamp = &s;
       }
     }
-    const bool constrained = !scene_.joints.empty() || (ctx_.dim == 3 && !scene_.rigidBodies.empty()) || hubClamp;
+    bool sliding = false;  // its spacing joints (Model::addMaterialSpacingJoints)
+    for (const model::SupportDesc& s : scene_.supports) sliding = sliding || s.type == model::SupportType::Sliding;
+    const bool constrained = !scene_.joints.empty() || (ctx_.dim == 3 && !scene_.rigidBodies.empty()) || hubClamp || sliding;
     if (model::isExplicit(d.integrator) && hubClamp && scene_.joints.empty())
       integrator.fail("explicit integrators (rk4, abm4) take problems without Lagrange multipliers, and the `clamped` hub "
                       "support at " + hubClamp->mark.where() + " holds the turning slope direction by one; use "
@@ -1441,9 +1444,31 @@ private:
           s.dofs.push_back(dof);
         }
       }
-      if (const Field hub = item.child("hub"); hub.present()) readHub(hub, s);
+      if (const Field hub = item.child("hub"); hub.present()) {
+        if (s.type == model::SupportType::Sliding) hub.fail("a sliding support is held at a fixed point (a hub is not built for it)");
+        readHub(hub, s);
+      }
+      if (s.type == model::SupportType::Sliding) checkSliding(item, s);
       scene_.supports.push_back(std::move(s));
     }
+  }
+
+  // type: sliding: an inner node of an ALE body (material slides through it), in dynamics, on a body
+  // whose material coordinates nothing else moves (Model::addMaterialSpacingJoints).
+  void checkSliding(const Field& item, const model::SupportDesc& s) const {
+    const Field type = item.child("type");
+    const BodyDesc& body = findBody(item.child("body"));
+    if (elements::kindInfo(body.kind).materialBlock() < 0)
+      type.fail(std::string("sliding: material slides through the node only on an ALE body (AleCable2d, AleCable3d, "
+                            "AleBeamShaft3d), not ") + elements::kindInfo(body.kind).name);
+    if (scene_.analysis != model::Analysis::Dynamic) type.fail("sliding: only with analysis: dynamic");
+    if (s.at.node <= 0 || s.at.node >= body.elements)
+      item.child("node").fail("sliding: an inner node (1.." + std::to_string(body.elements - 1) +
+                              "); an end node is a material point, the end of the body");
+    if (body.hasPayout || body.hasMaterialMotion || !body.materialNodes.empty())
+      type.fail("sliding: not built on a body whose material moves by payout, material_motion or material_nodes");
+    for (const model::SupportDesc& o : scene_.supports)
+      if (o.at.body == s.at.body && o.at.node == s.at.node) type.fail("sliding: this node has another support");
   }
 
   // pulleys: [{name, center, radius, speed}] (PulleyDesc; 2D).

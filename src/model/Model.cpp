@@ -504,9 +504,59 @@ Model::ClampDirections Model::addClampDirectionJoints(Build& build) {
   return out;
 }
 
+// A `sliding` support (an ALE body's inner node held in space while material slides through it:
+// a guide, a ring, a sleeve) leaves the node's material coordinate p free. The nodes between it and
+// the next anchor on either side (an end, whose p is held, or another sliding node) keep their
+// material spacing equal (seed 000 Eq. 51): p_n - (1 - w) p_a - w p_c = 0, w = (n - a) / (c - a),
+// a linear joint (ConstraintForm::Spacing) over the three material blocks with one multiplier.
+// Returns the material dofs left free.
+std::vector<int> Model::addMaterialSpacingJoints(Build& build) {
+  const SceneDescription& scene = build.scene;
+  std::vector<int> freeDofs;
+  for (size_t bi = 0; bi < _bodies.size(); ++bi) {
+    const Body& b = _bodies[bi];
+    const int k = b.info().materialBlock();
+    if (k < 0) continue;
+    std::vector<int> anchors{0, b.elements};
+    std::vector<char> sliding(b.elements + 1, 0);
+    for (const SupportDesc& s : scene.supports)
+      if (s.type == SupportType::Sliding && s.at.body == b.name) {
+        const int n = nodeIndex(s.at, b);
+        sliding[n] = 1;
+        anchors.push_back(n);
+      }
+    std::sort(anchors.begin(), anchors.end());
+    anchors.erase(std::unique(anchors.begin(), anchors.end()), anchors.end());
+    for (size_t j = 0; j + 1 < anchors.size(); ++j) {
+      const int a = anchors[j], c = anchors[j + 1];
+      if (!sliding[a] && !sliding[c]) continue;
+      for (int n = a + 1; n < c; ++n) {
+        const double w = static_cast<double>(n - a) / (c - a);
+        Joint jt;
+        jt.label = b.name + " node " + std::to_string(n) + " (equal material spacing)";
+        jt.count = 1;
+        jt.blocks = {b.block(n, k), b.block(a, k), b.block(c, k)};
+        jt.lambdaBlocks = {_numBlocks++};
+        elements::ConstraintEq e;
+        e.form = elements::ConstraintForm::Spacing;
+        e.a.c = {1.0, -(1.0 - w), -w};
+        jt.equations.push_back(e);
+        _joints.push_back(std::move(jt));
+        freeDofs.push_back(b.block(n, k) * _dim);
+      }
+    }
+    for (int n = 0; n <= b.elements; ++n)
+      if (sliding[n]) freeDofs.push_back(b.block(n, k) * _dim);
+  }
+  _q0.resize(numDofs(), 0.0);
+  return freeDofs;
+}
+
 void Model::addSupports(Build& build) {
   const SceneDescription& scene = build.scene;
   const ClampDirections clampDirections = addClampDirectionJoints(build);
+  const std::vector<int> freeMaterial = addMaterialSpacingJoints(build);
+  _freeMaterial = !freeMaterial.empty();
   _fixed.assign(numDofs(), 0);
   _multiplier.assign(numDofs(), 0);
   for (size_t r = 0; r < _rigid.size(); ++r) {
@@ -541,7 +591,7 @@ void Model::addSupports(Build& build) {
     const MaterialWeights weights = materialNodeWeights(scene.bodies[bi], b.elements);
     for (int n = 0; n <= b.elements; ++n) {
       const int dof = b.block(n, k) * _dim;
-      _fixed[dof] = 1;
+      _fixed[dof] = std::find(freeMaterial.begin(), freeMaterial.end(), dof) == freeMaterial.end();
       for (int i = elements::usedComponents(b.info().layout[k], _dim); i < _dim; ++i) _fixed[dof + i] = 1;
       if (scene.bodies[bi].hasMaterialMotion) _prescribed.push_back({dof, scene.bodies[bi].materialMotion, 1.0});
       if (scene.bodies[bi].hasPayout && n < b.elements)  // equal spacing: node n moves by -(N - n)/N of it

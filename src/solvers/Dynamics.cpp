@@ -127,7 +127,8 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, SNESGetKSP(snes, &ksp));
   // second-order form: K + c_v D + c_a M is regular without the multiplier rows (the interface
   // Schur PC takes them); the first-order constrained state space keeps MUMPS
-  PetscCallAbort(comm, setDirectSolverDefaults(ksp, _constrained, !_constrainedSpace));
+  const bool regularInterior = !_constrainedSpace && !assembler.model().freeMaterialCoordinates();
+  PetscCallAbort(comm, setDirectSolverDefaults(ksp, _constrained, regularInterior));
   if (_constrainedSpace) {  // the assembled 2n x 2n Newton matrix, by the direct solver above
     PetscCallAbort(comm, _constrainedSpace->setImplicit(_ts));
     if (desc.adaptive) PetscCallAbort(comm, _constrainedSpace->setTolerances(_ts, desc.atol, desc.rtol));
@@ -216,7 +217,8 @@ PetscErrorCode Dynamics::createMassSolver(Vec X, KSP* ksp) {
   PetscCall(KSPSetOptionsPrefix(*ksp, "dyn_mass_"));
   PetscCall(KSPSetOperators(*ksp, S, S));
   PetscCall(MatDestroy(&S));
-  PetscCall(setDirectSolverDefaults(*ksp, _constrained, true));  // [M G^T; G 0]: M is regular
+  // [M G^T; G 0]: M is regular unless material coordinates are free (Model::freeMaterialCoordinates)
+  PetscCall(setDirectSolverDefaults(*ksp, _constrained, !_asm.model().freeMaterialCoordinates()));
   PetscCall(KSPSetFromOptions(*ksp));
   PetscFunctionReturn(0);
 }

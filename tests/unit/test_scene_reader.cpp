@@ -928,6 +928,18 @@ TEST(SceneReader, RigidBodiesAndJoints) {
   EXPECT_TRUE(failsWith(hubClamp, 5, "dynamics.integrator", "the `clamped` hub support at scene.yaml:4: supports[0]"));
   EXPECT_NO_THROW(parseScene(edit(hubClamp, "type: clamped,", "type: clamped_unstretched,"), "hc.yaml"));
   EXPECT_NO_THROW(parseScene(edit(hubClamp, "rk4", "bdf, constraint_form: index3"), "hc.yaml"));
+  // type: sliding: an inner node of an ALE body, dynamics, material moved by nothing else
+  const std::string ring =
+      "analysis: dynamic\ndimension: 2\nbodies: [{name: r, element: AleCable2d, elements: 4, geometry: {kind: line, "
+      "start: [0, 0], end: [0, -4]}, section: {E: 1e9, A: 1e-4, I: 1e-10, rho: 1000}}]\n"
+      "supports: [{body: r, node: 2, type: sliding}]\n"
+      "dynamics: {dt: 1e-3, t_end: 1e-2}\n";  // line 5
+  EXPECT_NO_THROW(parseScene(ring, "ring.yaml"));
+  EXPECT_TRUE(failsWith(edit(ring, "node: 2", "node: 0"), 4, "supports[0].node", "an inner node (1..3)"));
+  EXPECT_TRUE(failsWith(edit(ring, "AleCable2d", "AncfCable2d"), 4, "supports[0].type", "only on an ALE body"));
+  EXPECT_TRUE(failsWith(edit(ring, "rho: 1000}}", "rho: 1000}, payout: {function: linear, rate: 1}}"), 4,
+                        "supports[0].type", "not built on a body whose material moves"));
+  EXPECT_TRUE(failsWith(edit(ring, "dt: 1e-3", "integrator: rk4, dt: 1e-3"), 5, "dynamics.integrator", "explicit"));
   EXPECT_EQ(parseScene(edit(pinned, "rk4", "bdf"), "p.yaml").dynamics.constraintForm,
             model::DynamicsDesc::ConstraintForm::Ggl);
   EXPECT_EQ(parseScene(edit(pinned, "rk4", "bdf, constraint_form: index3"), "p.yaml").dynamics.constraintForm,

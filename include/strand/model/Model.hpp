@@ -163,6 +163,11 @@ public:
   // 1 on the multiplier DOFs that carry an equation (algebraic unknowns of the dynamics)
   const std::vector<char>& multiplierDofs() const { return _multiplier; }
   bool hasConstraints() const { return !_joints.empty(); }
+  // whether some ALE node's material coordinate is free (a sliding support): then a node's motion
+  // along its tangent and its material coordinate nearly describe the same motion, and only the
+  // spacing joints make the Newton matrix regular (its interior without them: cond 1.5e12 on an
+  // 8-element rope), so the multipliers cannot be split off (solvers: MUMPS)
+  bool freeMaterialCoordinates() const { return _freeMaterial; }
   // Initial velocities per DOF (model numbering; rigid bodies' velocity keys, zero elsewhere).
   const std::vector<double>& initialVelocities() const { return _v0; }
   // Supports on turning hubs (their DOFs are among fixedDofs; the others stay at zero displacement).
@@ -208,6 +213,9 @@ private:
     std::vector<std::vector<int>> turningNormals;       // the blocks of the normals a hub turns
   };
   ClampDirections addClampDirectionJoints(Build& b);
+  // Sliding supports of ALE bodies: the material dofs left free (model numbering), their spacing
+  // joints appended to _joints
+  std::vector<int> addMaterialSpacingJoints(Build& b);
   void addLoads(Build& b);
   void addInitialVelocities(Build& b);
   void addJointEquations(Build& b);
@@ -216,6 +224,7 @@ private:
   void addContacts(const SceneDescription& scene);
 
   int _dim = 3, _numBlocks = 0;
+  bool _freeMaterial = false;
   std::vector<Body> _bodies;
   std::vector<ElementGroup> _groups;
   std::vector<double> _q0, _nodalForce;

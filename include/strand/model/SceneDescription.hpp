@@ -131,7 +131,7 @@ struct HubDesc {
 // length, the axial stretch, is free; a shear beam's cross-section vector is held whole);
 // clamped_unstretched: position and the whole orientation block (zero axial strain at the node);
 // pinned: position; fixed: listed coordinates.
-enum class SupportType { Clamped, ClampedUnstretched, Pinned, Fixed };
+enum class SupportType { Clamped, ClampedUnstretched, Pinned, Fixed, Sliding };
 struct SupportDesc {
   NodeRef at;
   SupportType type = SupportType::Clamped;
