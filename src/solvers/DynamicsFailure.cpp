@@ -3,11 +3,23 @@
 #include <cmath>
 
 #include "strand/solvers/Dynamics.hpp"
+#include "strand/solvers/InterfaceSchur.hpp"
 #include "strand/solvers/Schemes.hpp"
 
 namespace strand::solvers {
 
 std::string Dynamics::failureHint(const DynamicsStep&) const {
+  if (!_explicit) {  // the interface Schur PC's saddle-point probe (InterfaceSchur.hpp)
+    SNES snes;
+    KSP ksp;
+    PC pc;
+    PetscBool probeFailed = PETSC_FALSE;
+    if (TSGetSNES(_ts, &snes) == 0 && SNESGetKSP(snes, &ksp) == 0 && KSPGetPC(ksp, &pc) == 0 &&
+        InterfaceSchurProbeFailed(pc, &probeFailed) == 0 && probeFailed)
+      return "The Newton matrix without its multiplier rows is nearly singular, so the banded solve with the "
+             "multipliers on its interface is inexact (docs/architecture.md, decision 18). Factor it with MUMPS: "
+             "-dyn_pc_type lu -dyn_pc_factor_mat_solver_type mumps.";
+  }
   const bool undamped = _desc.integrator == model::Integrator::Newmark ||
                         (_desc.integrator == model::Integrator::GeneralizedAlpha && _desc.rhoInf >= 0.99);
   if (_constrained && undamped)

@@ -364,6 +364,45 @@ PCFailedReason localFailure(SchurData* d) {
   return reason;
 }
 
+PetscErrorCode apply(PC pc, Vec b, Vec x);
+
+// Multiplier rows split off onto the interface need the rest of the matrix regular. Probe the
+// solve once per factorization: b = A y for a fixed y, x = P^{-1} b, and the relative residual
+// |A x - b| / |b|. A nearly singular interior (an ALE rope with free material coordinates: cond
+// 1.5e12) left 1e-5 where a regular one leaves 1e-12 (meshes/link-and-cable.yaml: 3e-12); above
+// 1e-8 the PC fails (a Newton failure that says so) instead of solving wrongly.
+PetscErrorCode probeSaddlePoint(PC pc, SchurData* d, Mat P) {
+  PetscFunctionBeginUser;
+  Vec y, b, x;
+  PetscCall(MatCreateVecs(P, &y, &b));
+  PetscCall(VecDuplicate(y, &x));
+  PetscInt lo, hi;
+  PetscCall(VecGetOwnershipRange(y, &lo, &hi));
+  PetscScalar* a;
+  PetscCall(VecGetArray(y, &a));
+  for (PetscInt i = lo; i < hi; ++i) a[i - lo] = 1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i) + 0.3);
+  PetscCall(VecRestoreArray(y, &a));
+  PetscCall(MatMult(P, y, b));
+  PetscCall(apply(pc, b, x));
+  PetscCall(MatMult(P, x, y));  // y := A x
+  PetscCall(VecAXPY(y, -1.0, b));
+  PetscReal r, nb;
+  PetscCall(VecNorm(y, NORM_INFINITY, &r));
+  PetscCall(VecNorm(b, NORM_INFINITY, &nb));
+  d->probeResidual = nb > 0.0 ? r / nb : 0.0;
+  if (!(d->probeResidual <= schur::kSaddleProbeTolerance)) {
+    d->failed = true;
+    PetscCall(PCSetFailedReason(pc, PC_SUBPC_ERROR));
+    PetscCall(PetscInfo(pc, "the matrix without its multiplier rows is nearly singular: probe residual %g; factor it "
+                            "with MUMPS (-<prefix>pc_type lu -<prefix>pc_factor_mat_solver_type mumps)\n",
+                        static_cast<double>(d->probeResidual)));
+  }
+  PetscCall(VecDestroy(&y));
+  PetscCall(VecDestroy(&b));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode setUp(PC pc) {
   SchurData* d = dataOf(pc);
   Mat P = pc->pmat, Ad, Ao;
@@ -429,6 +468,9 @@ PetscErrorCode setUp(PC pc) {
       PetscCall(PCSetFailedReason(pc, PC_FACTOR_NUMERIC_ZEROPIVOT));
       break;
     }
+  PetscMPIInt mine = d->multipliers, any = 0;
+  PetscCallMPI(MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm));
+  if (any && !d->failed) PetscCall(probeSaddlePoint(pc, d, P));
   PetscFunctionReturn(0);
 }
 
@@ -568,6 +610,9 @@ PetscErrorCode view(PC pc, PetscViewer viewer) {
   if (!ascii || !d->built) PetscFunctionReturn(0);
   PetscCall(PetscViewerASCIIPrintf(viewer, "  interface Schur complement: %d interface unknowns\n",
                                    static_cast<int>(d->gamma.size())));
+  if (d->probeResidual > 0.0)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  multiplier rows on the interface: probe residual %.1e (limit %.0e)\n",
+                                     d->probeResidual, schur::kSaddleProbeTolerance));
   PetscCall(PetscViewerASCIIPushSynchronized(viewer));
   PetscCall(PetscViewerASCIISynchronizedPrintf(
       viewer, "  [%d] interior unknowns %d, %s\n", static_cast<int>(PetscGlobalRank),
@@ -622,6 +667,15 @@ PetscErrorCode InterfaceSchurGetSizes(PC pc, PetscInt* interface, PetscInt* loca
   PetscCall(checkedData(pc, &d));
   *interface = static_cast<PetscInt>(d->gamma.size());
   *localInterior = d->rows - static_cast<PetscInt>(d->interface.size());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode InterfaceSchurProbeFailed(PC pc, PetscBool* failed) {
+  PetscBool match;
+  PetscFunctionBeginUser;
+  *failed = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), kPcInterfaceSchur, &match));
+  if (match) *failed = static_cast<PetscBool>(dataOf(pc)->probeResidual > schur::kSaddleProbeTolerance);
   PetscFunctionReturn(0);
 }
 

@@ -18,6 +18,8 @@ namespace strand::solvers::schur {
 
 using RowMajor = Eigen::Matrix<PetscScalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
+inline constexpr double kSaddleProbeTolerance = 1e-8;
+
 struct SchurData {
   bool built = false, failed = false;
   PetscInt rows = 0;                // local rows
@@ -55,6 +57,7 @@ struct SchurData {
   // split sweeps' trailing factors would meet them unpivoted: 3e-12 relative residuals on one rank,
   // 2e-6 on two, on meshes/link-and-cable.yaml)
   bool multipliers = false;
+  double probeResidual = 0.0;  // of the last set-up's probe (InterfaceSchur.cpp, probeSaddlePoint)
 
   // Split sweeps. The LU of the whole local diagonal block A_d in factor order, the interface last:
   // A_d's order when the interface is at the end (DofMap numbers the end segments of a chain so),

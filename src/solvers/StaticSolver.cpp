@@ -13,6 +13,7 @@ PetscErrorCode setDirectSolverDefaults(KSP ksp, bool saddlePoint, bool regularIn
   PC pc;
   PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(InterfaceSchurRegister());  // -<prefix>pc_type strand_interface_schur works everywhere
   if (!saddlePoint || regularInterior) {
     // Per-rank banded LU plus the interface Schur complement (InterfaceSchur.hpp): at 1e5 elements
     // on two ranks ~20 times faster solves than MUMPS; on one rank (no interface) the banded LU of

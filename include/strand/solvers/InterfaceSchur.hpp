@@ -40,7 +40,9 @@
 // Lagrange multiplier's) is put on the interface, whose dense Schur complement is factored with
 // partial pivoting: a saddle-point matrix is solved exactly when the rest of it is regular (a
 // dynamics Newton matrix K + c_v D + c_a M; setDirectSolverDefaults' regularInterior), else the
-// interior LU or S reports a zero pivot (PC failure). Static mechanisms: MUMPS. The interior solve's local solver has the options prefix <pc prefix>schur_interior_
+// interior LU or S reports a zero pivot (PC failure); a nearly singular rest is caught by a probe
+// solve at each set-up (relative residual above 1e-8: PC failure, InterfaceSchurProbeFailed).
+// Static mechanisms: MUMPS. The interior solve's local solver has the options prefix <pc prefix>schur_interior_
 // (default: preonly, LU, RCM ordering); -<pc prefix>pc_strand_interface_schur_split_sweeps false
 // makes every rank use it.
 #include <petscpc.h>
@@ -57,6 +59,10 @@ PetscErrorCode InterfaceSchurGetSizes(PC pc, PetscInt* interface, PetscInt* loca
 
 // How a rank solves its own segment (see above).
 enum class SegmentSolve { InteriorSolve, SplitSweeps, ReversedSplitSweeps };
+
+// Whether the last set-up's saddle-point probe failed (multiplier rows on the interface of a matrix
+// whose rest is nearly singular; the PC then reports PC_SUBPC_ERROR). False for another PC type.
+PetscErrorCode InterfaceSchurProbeFailed(PC pc, PetscBool* failed);
 
 // After PCSetUp: how this rank solves its segment.
 PetscErrorCode InterfaceSchurGetSegmentSolve(PC pc, SegmentSolve* how);
