@@ -136,9 +136,8 @@ struct OutputWriter::Impl {
     RowDataset centerline, coordinates;
     std::vector<RowDataset> fields;
   };
-  RowDataset frameTimes;
+  RowDataset frameTimes;  // its buffer: the times of frames committedFrames, committedFrames + 1, ...
   std::vector<BodyFrames> frameData;
-  std::vector<double> pendingTimes;  // frames committedFrames, committedFrames + 1, ... (buffered)
   int committedFrames = 0;
   std::size_t pendingBytes = 0;
   bool pendingSeries = false;
@@ -397,7 +396,6 @@ struct OutputWriter::Impl {
     requireOpen("writeFrame");
     checkFrames(data, "frame " + std::to_string(frames), true);
     frameTimes.buffer(&time, 1);
-    pendingTimes.push_back(time);
     for (std::size_t b = 0; b < data.size(); ++b) {
       const BodyFrame& f = data[b];
       frameData[b].centerline.buffer(f.centerline.data(), f.centerline.size());
@@ -472,14 +470,15 @@ struct OutputWriter::Impl {
   void commitBlock() {
     QuietHdf5 quiet;
     const int first = committedFrames;
-    const int n = static_cast<int>(pendingTimes.size());
+    const std::vector<double>& times = frameTimes.pending();  // kept until committed() or rollback()
+    const int n = static_cast<int>(times.size());
     std::string grids;
     try {
       if (n > 0) {
         forFrameDatasets([](RowDataset& d) { d.write(); });
         updateAttribute(framesGroup.get(), "count", first + n);
         for (int k = 0; k < n; ++k)
-          grids += spatialGrid("frame_" + formatIndex(first + k), pendingTimes[k], "", true, frameRow(first + k));
+          grids += spatialGrid("frame_" + formatIndex(first + k), times[k], "", true, frameRow(first + k));
       }
       for (auto& [name, s] : series) {
         if (s.data.pendingValues() == 0) continue;
@@ -509,7 +508,6 @@ struct OutputWriter::Impl {
   }
 
   void dropPending() {
-    pendingTimes.clear();
     pendingBytes = 0;
     pendingSeries = false;
     lastCommit = std::chrono::steady_clock::now();

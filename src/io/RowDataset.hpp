@@ -38,6 +38,7 @@ public:
 
   void buffer(const double* values, std::size_t n) { pending_.insert(pending_.end(), values, values + n); }
   std::size_t pendingValues() const { return pending_.size(); }
+  const std::vector<double>& pending() const { return pending_; }  // row-major, not yet in the file
   hsize_t rows() const { return rows_; }  // rows in the file
 
   // Appends the buffered rows to the file (they count as rows() after committed()).

@@ -509,7 +509,7 @@ Model::ClampDirections Model::addClampDirectionJoints(Build& build) {
 // the next anchor on either side (an end, whose p is held, or another sliding node) keep their
 // material spacing equal (seed 000 Eq. 51): p_n - (1 - w) p_a - w p_c = 0, w = (n - a) / (c - a),
 // a linear joint (ConstraintForm::Spacing) over the three material blocks with one multiplier.
-// Returns the material dofs left free.
+// Returns the material dofs left free (model numbering).
 std::vector<int> Model::addMaterialSpacingJoints(Build& build) {
   const SceneDescription& scene = build.scene;
   std::vector<int> freeDofs;
@@ -557,6 +557,8 @@ void Model::addSupports(Build& build) {
   const ClampDirections clampDirections = addClampDirectionJoints(build);
   const std::vector<int> freeMaterial = addMaterialSpacingJoints(build);
   _freeMaterial = !freeMaterial.empty();
+  std::vector<char> materialFree(numDofs(), 0);
+  for (int dof : freeMaterial) materialFree[dof] = 1;
   _fixed.assign(numDofs(), 0);
   _multiplier.assign(numDofs(), 0);
   for (size_t r = 0; r < _rigid.size(); ++r) {
@@ -591,7 +593,7 @@ void Model::addSupports(Build& build) {
     const MaterialWeights weights = materialNodeWeights(scene.bodies[bi], b.elements);
     for (int n = 0; n <= b.elements; ++n) {
       const int dof = b.block(n, k) * _dim;
-      _fixed[dof] = std::find(freeMaterial.begin(), freeMaterial.end(), dof) == freeMaterial.end();
+      _fixed[dof] = !materialFree[dof];
       for (int i = elements::usedComponents(b.info().layout[k], _dim); i < _dim; ++i) _fixed[dof + i] = 1;
       if (scene.bodies[bi].hasMaterialMotion) _prescribed.push_back({dof, scene.bodies[bi].materialMotion, 1.0});
       if (scene.bodies[bi].hasPayout && n < b.elements)  // equal spacing: node n moves by -(N - n)/N of it

@@ -149,6 +149,9 @@ PetscErrorCode findInterface(SchurData* d, Mat P) {
       if (a[r] == 0.0) onInterface[r / bs] = 1, d->multipliers = true;
     PetscCall(VecRestoreArrayRead(diag, &a));
     PetscCall(VecDestroy(&diag));
+    PetscMPIInt mine = d->multipliers, any = 0;
+    PetscCallMPI(MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm));
+    d->anyMultipliers = any;
   }
   d->interface.clear();
   for (PetscInt r = 0; r < rows; ++r)
@@ -468,9 +471,7 @@ PetscErrorCode setUp(PC pc) {
       PetscCall(PCSetFailedReason(pc, PC_FACTOR_NUMERIC_ZEROPIVOT));
       break;
     }
-  PetscMPIInt mine = d->multipliers, any = 0;
-  PetscCallMPI(MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm));
-  if (any && !d->failed) PetscCall(probeSaddlePoint(pc, d, P));
+  if (d->anyMultipliers && !d->failed) PetscCall(probeSaddlePoint(pc, d, P));
   PetscFunctionReturn(0);
 }
 

@@ -57,6 +57,7 @@ struct SchurData {
   // split sweeps' trailing factors would meet them unpivoted: 3e-12 relative residuals on one rank,
   // 2e-6 on two, on meshes/link-and-cable.yaml)
   bool multipliers = false;
+  bool anyMultipliers = false;  // on some rank (the probe below is collective)
   double probeResidual = 0.0;  // of the last set-up's probe (InterfaceSchur.cpp, probeSaddlePoint)
 
   // Split sweeps. The LU of the whole local diagonal block A_d in factor order, the interface last:
