@@ -236,6 +236,33 @@ private:
     PetscFunctionReturn(0);
   }
 
+  // /series/reel_<name>_{angle, speed, content, length}: each reel's angle [rad] and speed [rad/s],
+  // the material still wound on it [m] and the unstretched length of the body it pays out
+  // (p_N - p_0) [m]: content + length stays the reel's content + the body's initial length.
+  PetscErrorCode writeReelSeries(Vec X, Vec V) {
+    PetscFunctionBeginUser;
+    const model::Model& m = _problem.model();
+    if (m.reels().empty()) PetscFunctionReturn(0);
+    std::vector<double> x, v;
+    PetscCall(_problem.assembler().gatherToRoot(X, x));
+    PetscCall(_problem.assembler().gatherToRoot(V, v));
+    const int D = m.dim();  // x, v: model order, coordinates q (not displacements)
+    for (size_t r = 0; r < m.reels().size(); ++r) {
+      const model::ReelDesc& d = m.reels()[r];
+      const model::Body& b = m.bodies()[m.reelBody(static_cast<int>(r))];
+      const int k = b.info().materialBlock(), dof = m.reelBlock(static_cast<int>(r)) * D;
+      const int p0 = b.block(0, k) * D, pN = b.block(b.elements, k) * D;
+      const double phi = x.empty() ? 0.0 : x[dof];
+      const double length = x.empty() ? 0.0 : x[pN] - x[p0];
+      const std::string stem = "reel_" + d.name + "_";
+      PetscCallCXX(_writer->writeScalarSeries(stem + "angle", phi));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "speed", v.empty() ? 0.0 : v[dof]));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "content", d.content - d.radius * phi));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "length", length));
+    }
+    PetscFunctionReturn(0);
+  }
+
   int staticSolve(solvers::StaticSolver& solver, Vec X, std::string* failure) {
     solver.setStopCheck([] { return stopSignal() != 0; });
     int lastStep = 0;
@@ -361,6 +388,7 @@ private:
         }
       }
       PetscCall(writePulleySeries(Xs, Vs, s.time));
+      PetscCall(writeReelSeries(Xs, Vs));
       PetscCallCXX(_writer->writeScalarSeries("energy_balance", s.energy()));
       PetscCallCXX(_writer->writeScalarSeries("newton_iterations", s.newtonIterations));
       PetscCallCXX(_writer->writeScalarSeries("time_step", s.timeStep));

@@ -7,6 +7,7 @@
 #include "Multibody.hpp"
 #include "NodalMomentLoads.hpp"
 #include "PulleyContacts.hpp"
+#include "Reels.hpp"
 
 namespace strand::assembly {
 
@@ -86,6 +87,7 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
   _moments = std::make_unique<NodalMomentLoads>(model, dofs, _q0Local);
   _multibody = std::make_unique<Multibody>(model, dofs, _q0Local);
   _contacts = std::make_unique<PulleyContacts>(model, dofs, _q0Local);
+  _reels = std::make_unique<Reels>(model, dofs);
 }
 
 Assembler::~Assembler() {
@@ -138,6 +140,8 @@ PetscErrorCode Assembler::saddleMatrix(Vec X, Mat S) {
   PetscCall(MatZeroEntries(S));
   for (const auto& f : _families) PetscCall(f->mass(S, _fixedLocal));
   for (const auto& f : _families) PetscCall(f->massAt(x.a, S, _fixedLocal));  // M(q) of the ALE kinds
+  PetscCall(_reels->massAt(x.a, S, _fixedLocal));
+  PetscCall(_contacts->mass(S));  // free pulleys
   PetscCall(_multibody->mass(S, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, 1.0, 0.0, 0.0, S, _fixedLocal, true));
   PetscCall(endLocal(&x));
@@ -301,6 +305,7 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal t, PetscReal 
   _contacts->residual(x.a, V ? v.a : nullptr, t, r.a);
   _contacts->pulleyResidual(x.a, V ? v.a : nullptr, r.a);  // free pulleys' damping, tensioners' springs
   PetscCall(PetscLogEventEnd(evContact, 0, 0, 0, 0));
+  _reels->residual(V ? v.a : nullptr, r.a);  // reels' damping
   PetscCall(endLocalSum(&r));
   // owned rows: nodal forces and supports
   PetscScalar* owned;
@@ -361,10 +366,12 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal s
   PetscCall(_contacts->jacobian(x.a, V ? v.a : nullptr, t, shiftV, J, D, _fixedLocal));
   PetscCall(_contacts->pulleyMatrices(shiftV, shiftA, J, D));
   PetscCall(PetscLogEventEnd(evContact, 0, 0, 0, 0));
+  PetscCall(_reels->dampingMatrices(shiftV, J, D, _fixedLocal));
   if (A && V && hasVariableMass()) {
     LocalRead a;
     PetscCall(beginLocal(A, _rWork, &a));
     for (const auto& f : _families) PetscCall(f->inertiaJacobian(x.a, v.a, a.a, shiftV, shiftA, J, _fixedLocal));
+    PetscCall(_reels->inertiaJacobian(x.a, a.a, shiftA, J, _fixedLocal));
     PetscCall(endLocal(&a));
   }
   PetscCall(endLocal(&x));
@@ -418,6 +425,7 @@ PetscErrorCode Assembler::addInertia(Vec X, Vec V, Vec A, Vec R) {
   PetscCall(beginLocal(A, _rWork, &a));
   PetscCall(beginLocalSum(F, {X, V, A}, &r));
   for (const auto& f : _families) PetscCallCXX(f->inertia(x.a, v.a, a.a, r.a));
+  _reels->inertiaResidual(x.a, a.a, r.a);
   PetscCall(endLocalSum(&r));
   PetscCall(endLocal(&x));
   PetscCall(endLocal(&v));
@@ -436,6 +444,7 @@ PetscErrorCode Assembler::inertiaJacobian(Vec X, Vec V, Vec A, PetscReal shiftV,
     PetscCall(beginLocal(V, _vWork, &v));
     PetscCall(beginLocal(A, _rWork, &a));
     for (const auto& f : _families) PetscCall(f->inertiaJacobian(x.a, v.a, a.a, shiftV, shiftA, J, _fixedLocal));
+    PetscCall(_reels->inertiaJacobian(x.a, a.a, shiftA, J, _fixedLocal));
     PetscCall(endLocal(&a));
     PetscCall(endLocal(&v));
     PetscCall(endLocal(&x));
@@ -456,6 +465,7 @@ PetscErrorCode Assembler::massMatrixAt(Vec X, Mat M, bool maskSupports) {
     LocalRead x;
     PetscCall(beginLocal(X, _xWork, &x));
     for (const auto& f : _families) PetscCall(f->massAt(x.a, M, fixed));
+    PetscCall(_reels->massAt(x.a, M, fixed));
     PetscCall(endLocal(&x));
   }
   PetscCall(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
@@ -472,6 +482,7 @@ PetscErrorCode Assembler::variableKineticEnergy(Vec X, Vec V, PetscReal* T) {
   PetscCall(beginLocal(V, _vWork, &v));
   double local = 0.0;
   for (const auto& f : _families) local += f->kineticEnergy(x.a, v.a);
+  local += _reels->kineticEnergy(x.a, v.a);
   PetscCall(endLocal(&x));
   PetscCall(endLocal(&v));
   PetscCallMPI(MPI_Allreduce(&local, T, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm()));

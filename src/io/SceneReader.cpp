@@ -899,7 +899,7 @@ public:
     if (!root.present()) root.fail("the scene is empty; expected a map of scene keys");
     root.expectMap({"analysis", "dimension", "discretization", "bodies", "rigid_bodies", "joints", "supports",
                     "junctions", "loads", "static", "modes", "rotation", "sweep", "dynamics", "output", "hub_beam",
-                    "probes", "pulleys", "contact"});
+                    "probes", "pulleys", "contact", "reels"});
     scene_.analysis = pick(root.child("analysis"), "analysis", kAnalyses).value;
     scene_.analysisMark = root.child("analysis").mark();
     if (scene_.analysis == model::Analysis::Modes &&
@@ -915,6 +915,7 @@ public:
     if (const Field f = root.child("joints"); f.present()) readJoints(f);
 
     if (const Field f = root.child("supports"); f.present()) readSupports(f);
+    if (const Field f = root.child("reels"); f.present()) readReels(f);
     if (const Field f = root.child("junctions"); f.present()) readJunctions(f);
     if (const Field f = root.child("loads"); f.present()) readLoads(f);
     if (const Field f = root.child("static"); f.present()) {
@@ -1469,6 +1470,59 @@ private:
       type.fail("sliding: not built on a body whose material moves by payout, material_motion or material_nodes");
     for (const model::SupportDesc& o : scene_.supports)
       if (o.at.body == s.at.body && o.at.node == s.at.node) type.fail("sliding: this node has another support");
+  }
+
+  // reels: [{name, body, node: 0 | last, radius, inertia, content, rotation | torque, damping}]
+  // (ReelDesc): a drum paying out an ALE body's material from its exit node, in dynamics.
+  void readReels(const Field& f) {
+    for (const Field& item : f.items()) {
+      item.expectMap({"name", "body", "node", "radius", "inertia", "content", "rotation", "torque", "damping"});
+      model::ReelDesc r;
+      r.mark = item.mark();
+      const Field name = item.child("name");
+      r.name = name.text();
+      if (r.name.empty()) name.fail("must not be empty");
+      for (const model::ReelDesc& other : scene_.reels)
+        if (other.name == r.name) name.fail("a second reel named '" + r.name + "'");
+      if (scene_.analysis != model::Analysis::Dynamic) item.fail("a reel pays out in time: only with analysis: dynamic");
+      const Field bodyField = item.child("body");
+      const BodyDesc& body = findBody(bodyField);
+      r.body = body.name;
+      if (elements::kindInfo(body.kind).materialBlock() < 0)
+        bodyField.fail(std::string("a reel pays out the material of an ALE body (") + aleKindNames() + "), not " +
+                       elements::kindInfo(body.kind).name);
+      if (body.hasPayout || body.hasMaterialMotion || !body.materialNodes.empty())
+        bodyField.fail("this body's material already moves by payout, material_motion or material_nodes");
+      for (const model::ReelDesc& other : scene_.reels)
+        if (other.body == r.body) bodyField.fail("body '" + r.body + "' already has a reel ('" + other.name + "')");
+      for (const model::SupportDesc& s : scene_.supports)
+        if (s.at.body == r.body && s.type == model::SupportType::Sliding)
+          bodyField.fail("a reel on a body with a sliding support is not built");
+      if (const Field node = item.child("node"); node.present()) {
+        if (node.isScalar("last")) r.node = -1;
+        else if (node.integer("0 or 'last'") == 0) r.node = 0;
+        else node.fail("a reel pays out at an end of the body: 0 or 'last'");
+      }
+      r.radius = requirePositive(item.child("radius"));
+      if (const Field c = item.child("content"); c.present()) r.content = requireNonNegative(c);
+      const Field rotation = item.child("rotation");
+      r.driven = rotation.present();
+      if (r.driven) {
+        r.rotation = readTimeFunction(rotation);
+        if (r.rotation.at(0.0).df != 0.0)
+          rotation.fail("a reel starts at rest (the tether with it): give a rotation whose rate is zero at t = 0, e.g. "
+                        "{function: spin_up, omega: ..., duration: ...}");
+        for (const char* key : {"torque", "damping"})
+          if (const Field k = item.child(key); k.present())
+            k.fail("only for a free reel (without 'rotation'); a driven reel's motion is its 'rotation'");
+        if (const Field j = item.child("inertia"); j.present()) r.inertia = requireNonNegative(j);
+      } else {
+        r.inertia = requirePositive(item.child("inertia"));
+        if (const Field t = item.child("torque"); t.present()) r.torque = readTimeFunction(t);
+        if (const Field d = item.child("damping"); d.present()) r.damping = requireNonNegative(d);
+      }
+      scene_.reels.push_back(std::move(r));
+    }
   }
 
   // pulleys: [{name, center, radius, speed}] (PulleyDesc; 2D).

@@ -125,9 +125,30 @@ Model::Model(const SceneDescription& scene) : _dim(scene.dimension), _gravity(sc
   addJointEquations(b);             // 6. joint equations, checked at the initial state
   addCouplings();                   // 7. couplings: rigid bodies and joints
   addContacts(scene);               // 8. belt-pulley contact and the free pulleys' state
+  addReelDrives();                  // 9. reels: driven angle or applied torque
+}
+
+// A reel's block (phi, padding): phi prescribed for a driven reel (speed control), free with its
+// torque as a timed load otherwise (torque control); it starts at rest. The payout joint and
+// the block are made with the material joints (addMaterialJoints).
+void Model::addReelDrives() {
+  for (size_t r = 0; r < _reels.size(); ++r) {
+    const int dof = _reelBlock[r] * _dim;
+    for (int i = 1; i < _dim; ++i) _fixed[dof + i] = 1;
+    const ReelDesc& d = _reels[r];
+    if (d.driven) {
+      _fixed[dof] = 1;
+      _prescribed.push_back({dof, d.rotation, 1.0});
+      continue;
+    }
+    if (!(d.torque.kind == TimeFunction::Kind::Constant && d.torque.value == 0.0)) _timed.push_back({d.torque, {dof}, {1.0}});
+  }
 }
 
 void Model::addPulleyBlocks(Build& build) {
+  _reels = build.scene.reels;  // their blocks: with the material joints (addMaterialJoints)
+  _reelBlock.assign(_reels.size(), -1);
+  for (const ReelDesc& r : _reels) _reelBodyIndex.push_back(build.bodyIndex.at(r.body));
   _pulleys = build.scene.pulleys;
   for (const PulleyDesc& p : _pulleys) _pulleyBlock.push_back(p.free() ? _numBlocks++ : -1);
 }
@@ -188,6 +209,10 @@ bool Model::constantMass() const {
 bool Model::velocityDependent() const {
   for (const Body& b : _bodies)
     if (b.velocityDependent) return true;
+  for (const ReelDesc& r : _reels)
+    if (r.damping > 0.0) return true;
+  for (const PulleyDesc& p : _pulleys)  // free pulleys' rotational damping, a tensioner's damper
+    if (p.damping > 0.0 || (p.hasSlide && p.slide.damping > 0.0)) return true;
   for (const PulleyContactSet& c : _contacts)  // contact damping and friction depend on the belt's velocity
     if (c.law.damping > 0.0 || c.law.friction != contact::FrictionLaw::None) return true;
   for (const PulleyDesc& p : _pulleys)
@@ -505,12 +530,14 @@ Model::ClampDirections Model::addClampDirectionJoints(Build& build) {
 }
 
 // A `sliding` support (an ALE body's inner node held in space while material slides through it:
-// a guide, a ring, a sleeve) leaves the node's material coordinate p free. The nodes between it and
-// the next anchor on either side (an end, whose p is held, or another sliding node) keep their
-// material spacing equal (seed 000 Eq. 51): p_n - (1 - w) p_a - w p_c = 0, w = (n - a) / (c - a),
-// a linear joint (ConstraintForm::Spacing) over the three material blocks with one multiplier.
-// Returns the material dofs left free (model numbering).
-std::vector<int> Model::addMaterialSpacingJoints(Build& build) {
+// a guide, a ring, a sleeve) leaves the node's material coordinate p free; so does a reel at its
+// exit node. The nodes between such a node and the next anchor on either side (an end, whose p is
+// held, or another free node) keep their material spacing equal (seed 000 Eq. 51):
+// p_n - (1 - w) p_a - w p_c = 0, w = (n - a) / (c - a), a linear joint (ConstraintForm::Linear)
+// over the three material blocks with one multiplier. A reel's block (phi, padding) ties its exit
+// node: p_exit - p_exit(0) = -/+ R phi (node 0: the body grows at its start, p falls; the last
+// node: p rises). Returns the material dofs left free (model numbering).
+std::vector<int> Model::addMaterialJoints(Build& build) {
   const SceneDescription& scene = build.scene;
   std::vector<int> freeDofs;
   for (size_t bi = 0; bi < _bodies.size(); ++bi) {
@@ -525,6 +552,23 @@ std::vector<int> Model::addMaterialSpacingJoints(Build& build) {
         sliding[n] = 1;
         anchors.push_back(n);
       }
+    for (size_t r = 0; r < _reels.size(); ++r) {
+      if (_reels[r].body != b.name) continue;
+      const int n = _reels[r].node == 0 ? 0 : b.elements;
+      sliding[n] = 1;
+      _reelBlock[r] = _numBlocks++;
+      Joint jt;
+      jt.label = "reel '" + _reels[r].name + "' (payout at node " + std::to_string(n) + ")";
+      jt.count = 1;
+      jt.blocks = {b.block(n, k), _reelBlock[r]};
+      jt.lambdaBlocks = {_numBlocks++};
+      elements::ConstraintEq e;
+      e.form = elements::ConstraintForm::Linear;
+      e.a.c = {1.0, (n == 0 ? 1.0 : -1.0) * _reels[r].radius, 0.0};
+      e.length = _q0[b.block(n, k) * _dim];
+      jt.equations.push_back(e);
+      _joints.push_back(std::move(jt));
+    }
     std::sort(anchors.begin(), anchors.end());
     anchors.erase(std::unique(anchors.begin(), anchors.end()), anchors.end());
     for (size_t j = 0; j + 1 < anchors.size(); ++j) {
@@ -538,7 +582,7 @@ std::vector<int> Model::addMaterialSpacingJoints(Build& build) {
         jt.blocks = {b.block(n, k), b.block(a, k), b.block(c, k)};
         jt.lambdaBlocks = {_numBlocks++};
         elements::ConstraintEq e;
-        e.form = elements::ConstraintForm::Spacing;
+        e.form = elements::ConstraintForm::Linear;
         e.a.c = {1.0, -(1.0 - w), -w};
         jt.equations.push_back(e);
         _joints.push_back(std::move(jt));
@@ -555,7 +599,7 @@ std::vector<int> Model::addMaterialSpacingJoints(Build& build) {
 void Model::addSupports(Build& build) {
   const SceneDescription& scene = build.scene;
   const ClampDirections clampDirections = addClampDirectionJoints(build);
-  const std::vector<int> freeMaterial = addMaterialSpacingJoints(build);
+  const std::vector<int> freeMaterial = addMaterialJoints(build);
   _freeMaterial = !freeMaterial.empty();
   std::vector<char> materialFree(numDofs(), 0);
   for (int dof : freeMaterial) materialFree[dof] = 1;

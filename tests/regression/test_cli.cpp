@@ -965,6 +965,7 @@ TEST(Cli, RestartContinuesTheTrajectoryAndAWallTimeLimitStopsCleanly) {
   };
   const std::string pendulum = sourceDir() + "/meshes/compound-pendulum.yaml";
   const std::string tether = sourceDir() + "/meshes/deploying-tether.yaml";
+  const std::string reel = sourceDir() + "/meshes/reel-tether.yaml";
   const Case cases[] = {
       // explicit: no Newton; the checkpoint carries ABM4's rates f_n .. f_{n-3}. Measured: identical.
       {"rk4", scene, "{integrator: rk4, dt: 2.5e-4, t_end: 0.1, output_every: 100}", 101, "step 303", kBitIdentical},
@@ -995,6 +996,10 @@ TEST(Cli, RestartContinuesTheTrajectoryAndAWallTimeLimitStopsCleanly) {
       // block on a joint), restarted on two ranks under full Newton. Measured: rel2 2.5e-16 (and
       // 3.6e-15 m for the shipped scene to t = 10 s on one rank after a wall-time stop at 3.5 s).
       {"ale_payout", tether, "{integrator: generalized_alpha, rho_inf: 0.5, dt: 2e-3, t_end: 0.6, output_every: 100}",
+       101, "step 202", 98 * kNewtonStol, twoRanks(), " -dyn_newton_matrix_contraction 0"},
+      // a 3D tether paid out by a free reel (its angle an unknown with a configuration-dependent
+      // inertia, tied to the exit's material coordinate by a multiplier), restarted on two ranks.
+      {"ale_reel", reel, "{integrator: generalized_alpha, rho_inf: 0.5, dt: 2e-3, t_end: 0.6, output_every: 100}",
        101, "step 202", 98 * kNewtonStol, twoRanks(), " -dyn_newton_matrix_contraction 0"},
   };
   // A generalized-alpha run that chose X0 at its first step (a steel cantilever released under

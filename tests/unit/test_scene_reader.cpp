@@ -940,6 +940,34 @@ TEST(SceneReader, RigidBodiesAndJoints) {
   EXPECT_TRUE(failsWith(edit(ring, "rho: 1000}}", "rho: 1000}, payout: {function: linear, rate: 1}}"), 4,
                         "supports[0].type", "not built on a body whose material moves"));
   EXPECT_TRUE(failsWith(edit(ring, "dt: 1e-3", "integrator: rk4, dt: 1e-3"), 5, "dynamics.integrator", "explicit"));
+  // reels: on an ALE body's end, in dynamics; driven (rotation, starting at rest) or free (inertia,
+  // torque, damping); not with another motion of the body's material
+  const std::string reel =
+      "analysis: dynamic\ndimension: 2\nbodies: [{name: r, element: AleCable2d, elements: 4, geometry: {kind: line, "
+      "start: [0, 0], end: [0, -4]}, section: {E: 1e9, A: 1e-4, I: 1e-10, rho: 1000}}]\n"
+      "supports: [{body: r, node: 0, type: pinned}]\n"
+      "reels: [{name: w, body: r, radius: 0.5, inertia: 2, content: 10, damping: 1, torque: 3}]\n"  // line 5
+      "dynamics: {dt: 1e-3, t_end: 1e-2}\n";
+  const model::SceneDescription rs = parseScene(reel, "reel.yaml");
+  ASSERT_EQ(rs.reels.size(), 1u);
+  EXPECT_EQ(rs.reels[0].node, 0);
+  EXPECT_FALSE(rs.reels[0].driven);
+  EXPECT_DOUBLE_EQ(rs.reels[0].torque.at(0.0).f, 3.0);
+  EXPECT_EQ(parseScene(edit(reel, "radius: 0.5", "node: last, radius: 0.5"), "reel.yaml").reels[0].node, -1);
+  EXPECT_TRUE(failsWith(edit(reel, "radius: 0.5", "node: 2, radius: 0.5"), 5, "reels[0].node", "0 or 'last'"));
+  EXPECT_TRUE(failsWith(edit(reel, "AleCable2d", "AncfCable2d"), 5, "reels[0].body", "the material of an ALE body"));
+  EXPECT_TRUE(failsWith(edit(reel, "rho: 1000}}", "rho: 1000}, payout: {function: linear, rate: 1}}"), 5,
+                        "reels[0].body", "already moves by payout"));
+  EXPECT_TRUE(failsWith(edit(reel, "inertia: 2,", ""), 5, "reels[0].inertia", ""));
+  EXPECT_TRUE(failsWith(edit(reel, "radius: 0.5", "radius: -0.5"), 5, "reels[0].radius", "must be positive"));
+  EXPECT_TRUE(failsWith(edit(reel, "damping: 1, torque: 3", "rotation: {function: spin_up, omega: 1, duration: 1}, damping: 1"),
+                        5, "reels[0].damping", "only for a free reel"));
+  EXPECT_TRUE(failsWith(edit(reel, "damping: 1, torque: 3", "rotation: {function: linear, rate: 1}"), 5,
+                        "reels[0].rotation", "starts at rest"));
+  EXPECT_TRUE(parseScene(edit(reel, "damping: 1, torque: 3", "rotation: {function: spin_up, omega: 1, duration: 1}"),
+                         "reel.yaml").reels[0].driven);
+  EXPECT_TRUE(failsWith(edit(reel, "analysis: dynamic", "analysis: static"), 5, "reels[0]", "only with analysis: dynamic"));
+  EXPECT_TRUE(failsWith(edit(reel, "dt: 1e-3", "integrator: rk4, dt: 1e-3"), 6, "dynamics.integrator", "generalized_alpha"));
   EXPECT_EQ(parseScene(edit(pinned, "rk4", "bdf"), "p.yaml").dynamics.constraintForm,
             model::DynamicsDesc::ConstraintForm::Ggl);
   EXPECT_EQ(parseScene(edit(pinned, "rk4", "bdf, constraint_form: index3"), "p.yaml").dynamics.constraintForm,

@@ -309,7 +309,9 @@ TEST(SpinUp, HubClampHoldsTheSlopeDirectionLikeAClampJoint) {
     const model::SceneDescription sc =
         variant == 0 ? seed001Beam(E, 5, omega0, duration) : clampJointSpinUp(E, 5, omega0, duration);
     ASSERT_EQ(sc.supports.empty(), variant == 1);
-    if (variant == 0) ASSERT_EQ(sc.supports[0].type, model::SupportType::Clamped);
+    if (variant == 0) {
+      ASSERT_EQ(sc.supports[0].type, model::SupportType::Clamped);
+    }
     solvers::Problem p(comm, sc);
     model::DynamicsDesc d;
     d.rhoInf = 0.9;

@@ -16,6 +16,7 @@ strand_test(NAME verify_shear_beam_dynamics SOURCES verification/test_shear_beam
 strand_test(NAME verify_ale SOURCES verification/test_ale.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_ale_modes SOURCES verification/test_ale_modes.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_sliding_support SOURCES verification/test_sliding_support.cpp LABELS verification NPROCS 1 2)
+strand_test(NAME verify_reel SOURCES verification/test_reel.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_spinning_shaft SOURCES verification/test_spinning_shaft.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_free_modes SOURCES verification/test_free_modes.cpp LABELS verification NPROCS 1 2)
 strand_test(NAME verify_capstan SOURCES verification/test_capstan.cpp LABELS verification NPROCS 1 2)

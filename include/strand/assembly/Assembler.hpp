@@ -24,6 +24,7 @@ class ElementFamily;
 class Multibody;
 class NodalMomentLoads;
 class PulleyContacts;
+class Reels;
 
 // What the rows of supported DOFs hold in a residual: the unit-row convention (the DOF value), or
 // the assembled f_int - f_ext, i.e. (with M a added) the force the support exerts on the body.
@@ -203,6 +204,7 @@ private:
   std::unique_ptr<NodalMomentLoads> _moments;
   std::unique_ptr<Multibody> _multibody;
   std::unique_ptr<PulleyContacts> _contacts;
+  std::unique_ptr<Reels> _reels;
   PetscReal _constraintScale = 1.0;
   std::vector<char> _multiplierOwned;       // per owned DOF
   std::vector<double> _v0Owned;             // initial velocities, owned DOFs

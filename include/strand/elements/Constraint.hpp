@@ -15,8 +15,9 @@
 //   Equal       a - b = 0                     (D equations: pins, node-to-node);
 //   Distance    |a - b| - L = 0               (1 equation; the multiplier is the tension);
 //   Orthogonal  a . b = 0                     (1 equation: a slope normal to a direction);
-//   Spacing     sum_k c_k q_k = 0 over component 0 of blocks 0, 1, 2, c = a.c (1 equation, linear:
-//               material coordinates held equally spaced, seed 000 Eq. 51: p_n - (1-w) p_a - w p_c).
+//   Linear      sum_k c_k q_k - length = 0 over component 0 of blocks 0, 1, 2, c = a.c (1 equation:
+//               material coordinates held equally spaced, seed 000 Eq. 51: p_n - (1-w) p_a - w p_c;
+//               a reel paying out, p_exit + R phi - p_exit(0)).
 // For each form: g, its gradient G = dg/dq (m x n, row-major) and the contracted Hessian
 // H = sum_k w_k d^2 g_k / dq^2 (n x n) that the Newton matrix needs for the term G^T lambda.
 #pragma once
@@ -33,12 +34,12 @@ struct JointField {
   std::array<double, 3> c{};          // Constant: the value; Rigid*: body-frame vector
 };
 
-enum class ConstraintForm { Equal, Distance, Orthogonal, Spacing };
+enum class ConstraintForm { Equal, Distance, Orthogonal, Linear };
 
 struct ConstraintEq {
   ConstraintForm form = ConstraintForm::Equal;
   JointField a, b;
-  double length = 0.0;  // Distance
+  double length = 0.0;  // Distance: the length; Linear: the constant
 };
 
 template <int D>
@@ -101,8 +102,8 @@ struct Constraint {
 
   // g (m) and G (m x n).
   static void evaluate(const ConstraintEq& k, const double* q, int n, double* g, double* G) {
-    if (k.form == ConstraintForm::Spacing) {  // linear: G constant, no Hessian
-      g[0] = 0.0;
+    if (k.form == ConstraintForm::Linear) {  // G constant, no Hessian
+      g[0] = -k.length;
       for (int j = 0; j < n; ++j) G[j] = 0.0;
       for (int b = 0; b < 3 && b * D < n; ++b) {
         g[0] += k.a.c[b] * q[b * D];
@@ -114,7 +115,7 @@ struct Constraint {
     field(k.a, q, n, a, da);
     field(k.b, q, n, b, db);
     switch (k.form) {
-      case ConstraintForm::Spacing:
+      case ConstraintForm::Linear:
         return;  // above
       case ConstraintForm::Equal:
         for (int i = 0; i < D; ++i) {
@@ -151,7 +152,7 @@ struct Constraint {
 
   // H += s sum_k w_k d^2 g_k / dq^2 (n x n).
   static void addHessian(const ConstraintEq& k, const double* q, int n, const double* w, double s, double* H) {
-    if (k.form == ConstraintForm::Spacing) return;  // linear
+    if (k.form == ConstraintForm::Linear) return;  // linear
     if (k.form == ConstraintForm::Equal) {  // g = a - b: only the fields' own curvature
       double mw[D];
       for (int i = 0; i < D; ++i) mw[i] = -w[i];
@@ -164,7 +165,7 @@ struct Constraint {
     field(k.b, q, n, b, db);
     switch (k.form) {
       case ConstraintForm::Equal:
-      case ConstraintForm::Spacing:
+      case ConstraintForm::Linear:
         return;
       case ConstraintForm::Distance: {
         // g = |d|, d = a - b: d^2 g = (Dd^T (I - e e^T) Dd) / |d| + sum_i e_i d^2 d_i, e = d / |d|

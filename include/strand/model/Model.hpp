@@ -194,6 +194,11 @@ public:
   const std::vector<PulleyDesc>& pulleys() const { return _pulleys; }
   int pulleyBlock(int p) const { return _pulleyBlock[p]; }
   const std::vector<PulleyContactSet>& contacts() const { return _contacts; }
+  // Reels (ReelDesc): each has a block of its own (phi, padding held at zero), phi starting at 0;
+  // reelBody(r): the index of the body it pays out
+  const std::vector<ReelDesc>& reels() const { return _reels; }
+  int reelBlock(int r) const { return _reelBlock[r]; }
+  int reelBody(int r) const { return _reelBodyIndex[r]; }
   // Rotating frame (absent: omega 0). The angular speed may be changed between solves (sweeps).
   const RotationDesc& rotation() const { return _rotation; }
   void setAngularSpeed(double omega) { _rotation.omega = omega; }
@@ -213,15 +218,16 @@ private:
     std::vector<std::vector<int>> turningNormals;       // the blocks of the normals a hub turns
   };
   ClampDirections addClampDirectionJoints(Build& b);
-  // Sliding supports of ALE bodies: the material dofs left free (model numbering), their spacing
-  // joints appended to _joints
-  std::vector<int> addMaterialSpacingJoints(Build& b);
+  // Sliding supports and reels of ALE bodies: the material dofs left free (model numbering), their
+  // spacing joints and the reels' payout joints appended to _joints, the reels' blocks allocated
+  std::vector<int> addMaterialJoints(Build& b);
   void addLoads(Build& b);
   void addInitialVelocities(Build& b);
   void addJointEquations(Build& b);
   void addCouplings();
   void addPulleyBlocks(Build& b);
   void addContacts(const SceneDescription& scene);
+  void addReelDrives();
 
   int _dim = 3, _numBlocks = 0;
   bool _freeMaterial = false;
@@ -242,6 +248,8 @@ private:
   std::vector<PulleyDesc> _pulleys;
   std::vector<int> _pulleyBlock;
   std::vector<PulleyContactSet> _contacts;
+  std::vector<ReelDesc> _reels;
+  std::vector<int> _reelBlock, _reelBodyIndex;
   RotationDesc _rotation;
   ReferenceScales _scales;
 };

@@ -376,6 +376,29 @@ struct ContactDesc {
   int points = 4;
 };
 
+// A reel (seed 000, issue 35): a drum turning about a fixed axis that pays material of an ALE body
+// out of its exit node (node 0 or the last) or takes it in. Its angle phi (starting at 0, paying out
+// when it grows) moves the exit node's material coordinate by radius * phi, the body's other nodes
+// staying equally spaced in material (Eq. 51); the far end's material is held. Driven (speed
+// control): phi(t) = rotation(t) - rotation(0). Free (torque control): its angle is an unknown,
+// starting at rest, J(phi) phi'' = torque(t) - damping phi' + what the body exerts, with the inertia of the core plus
+// the material wound on it, J = inertia + rho A radius^2 content(phi), content(phi) = content -
+// radius phi [m] (material leaves at the drum's surface speed: no thrust, d(J w)/dt = J w' + J' w
+// with the outflow carrying J' w).
+struct ReelDesc {
+  std::string name;
+  SourceMark mark;
+  std::string body;
+  long node = 0;          // the exit: 0 or the last node (-1 in the scene)
+  double radius = 0.0;    // [m]
+  double inertia = 0.0;   // the core's [kg m^2]
+  double content = 0.0;   // material on the reel at t = 0 [m] (unstretched length)
+  bool driven = false;
+  TimeFunction rotation;  // driven: its angle [rad]
+  TimeFunction torque;    // free: the torque that turns it to pay out [N m]
+  double damping = 0.0;   // free: [N m s/rad]
+};
+
 struct SceneDescription {
   std::string file;  // path of the scene file
   std::vector<std::string> inputFiles;  // the other files it reads (polyline CSV), as opened
@@ -390,6 +413,7 @@ struct SceneDescription {
   std::vector<JointDesc> joints;
   std::vector<PulleyDesc> pulleys;
   std::vector<ContactDesc> contacts;
+  std::vector<ReelDesc> reels;
   LoadsDesc loads;
   StaticDesc statics;
   ModesDesc modes;
