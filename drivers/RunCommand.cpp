@@ -325,7 +325,8 @@ private:
     _writer->setAttribute("dt", d.dt);
     const bool moving = _problem.model().hasPrescribedMotion();
     const bool joints = _problem.model().hasConstraints();
-    const bool timedLoads = _problem.assembler().hasTimedLoads() || _problem.model().hasLoadFunction();
+    const bool timedLoads = _problem.assembler().hasTimedLoads() || _problem.model().hasLoadFunction() ||
+                            _problem.assembler().hasConfigurationLoads();  // series load_work
     const bool contact = _problem.assembler().hasContact();
     // next dt_out time (a restart starts with the first multiple at or after its time)
     double nextOut = d.dtOut > 0.0 && !_restart.scalars.empty() ? std::ceil(_restart.scalars.at("time") / d.dtOut - 1e-9) * d.dtOut : 0.0;

@@ -435,6 +435,25 @@ PetscErrorCode Assembler::addInertia(Vec X, Vec V, Vec A, Vec R) {
   PetscFunctionReturn(0);
 }
 
+bool Assembler::hasConfigurationLoads() const {
+  for (const auto& f : _families)
+    if (f->configurationLoads()) return true;
+  return false;
+}
+
+PetscErrorCode Assembler::configurationLoads(Vec X, Vec F) {
+  PetscFunctionBeginUser;
+  LocalRead x;
+  LocalSum r;
+  PetscCall(beginLocal(X, _xWork, &x));
+  PetscCall(beginLocalSum(F, {X}, &r));
+  for (const auto& f : _families) PetscCallCXX(f->addConfigurationLoads(x.a, r.a));
+  PetscCall(endLocalSum(&r));
+  PetscCall(endLocal(&x));
+  PetscCall(deliver(r, F));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::inertiaJacobian(Vec X, Vec V, Vec A, PetscReal shiftV, PetscReal shiftA, Mat J) {
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(J));

@@ -45,6 +45,13 @@ public:
   virtual PetscErrorCode massAt(const double* x, Mat M, const std::vector<char>& fixed) const = 0;
   // 1/2 v^T M(x) v.
   virtual double kineticEnergy(const double* x, const double* v) const = 0;
+
+  // Kinds whose distributed loads depend on the coordinates (K::kConfigurationLoads: the ALE kinds'
+  // load on the material between their nodes): r += Q(x), unscaled (the energy balance counts its
+  // work, v . Q, as it has no potential of the body alone: material enters and leaves with its
+  // potential). Nothing for the others.
+  virtual bool configurationLoads() const = 0;
+  virtual void addConfigurationLoads(const double* x, double* r) const = 0;
 };
 
 // The family of the model's element group `local.group` (its kind's KernelFamily).

@@ -237,6 +237,22 @@ public:
     return T;
   }
 
+  bool configurationLoads() const override { return K::kConfigurationLoads; }
+  void addConfigurationLoads(const double* x, double* r) const override {
+    if constexpr (K::kConfigurationLoads) {
+      double u[N], q0[N], Q[N];
+      for (int k = 0; k < _local.size(); ++k) {
+        gather(k, x, u, q0);
+        K::distributedLoad(perBody(k).kernel, q0, u, loadPerLength(k), Q);
+        const PetscInt* lb = _local.localBlocksOf(k);
+        for (int a = 0; a < B; ++a)
+          for (int i = 0; i < D; ++i) r[lb[a] * D + i] += Q[a * D + i];
+      }
+    } else {
+      (void)x, (void)r;
+    }
+  }
+
 private:
   struct PerBody {
     typename K::Body kernel;

@@ -52,6 +52,20 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, VecSet(_notMultiplier, 1.0));
   PetscCallAbort(comm, VecAXPY(_notMultiplier, -1.0, _multipliers));
   PetscCallAbort(comm, assembler.externalForce(_fext));
+  // loads that depend on the configuration (the ALE kinds' load on their material) have no
+  // potential of the body alone (material enters and leaves it): _fext keeps the constant loads,
+  // and the energy balance counts the others' work v . Q(q) (powers)
+  _configurationLoads = assembler.hasConfigurationLoads();
+  if (_configurationLoads) {
+    Vec zero, Q0;
+    PetscCallAbort(comm, VecDuplicate(_fext, &zero));
+    PetscCallAbort(comm, VecDuplicate(_fext, &Q0));
+    PetscCallAbort(comm, VecSet(zero, 0.0));
+    PetscCallAbort(comm, assembler.configurationLoads(zero, Q0));
+    PetscCallAbort(comm, VecAXPY(_fext, -1.0, Q0));
+    PetscCallAbort(comm, VecDestroy(&zero));
+    PetscCallAbort(comm, VecDestroy(&Q0));
+  }
   PetscCallAbort(comm, assembler.supportMask(_supported));
   {  // and 1e-12 |f| |q0|: the potential -f.u of the constant loads has the round-off eps |f| |q0|
      // (a rigid pendulum hanging at rest: 6e-27 J "created", with no cable in the floor above)
@@ -459,10 +473,15 @@ PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, P
   *damping = *support = *load = 0.0;
   // All three powers include the supported rows, as the support force does (zero v there unless the
   // support moves), so the balance E = T + U + P + W_d - W_s - W_t closes on moving supports too.
-  if (_asm.hasTimedLoads() || _asm.model().hasLoadFunction()) {  // v . f(t) of the time-dependent loads
+  if (_asm.hasTimedLoads() || _asm.model().hasLoadFunction() || _configurationLoads) {
+    // v . f(t) of the time-dependent loads, and v . Q(q) of the configuration-dependent ones
     PetscCall(VecSet(_w1, 0.0));
     PetscCall(_asm.addTimedLoads(t, _w1, 1.0));
     if (_asm.model().hasLoadFunction()) PetscCall(VecAXPY(_w1, _asm.model().loadFactor(t), _fext));
+    if (_configurationLoads) {
+      PetscCall(_asm.configurationLoads(X, _w2));
+      PetscCall(VecAXPY(_w1, _asm.model().loadFactor(t), _w2));
+    }
     PetscCall(VecDot(_w1, V, load));
   }
   if (_damped) {

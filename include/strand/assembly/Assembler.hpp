@@ -107,6 +107,10 @@ public:
   // Time-dependent nodal forces (Model::timedLoads): R += scale * sum_k g_k(t) f_k on owned rows
   // (residual() includes them; the energy monitor uses this for their power).
   bool hasTimedLoads() const { return !_model.timedLoads().empty(); }
+  // Distributed loads that depend on the coordinates (the ALE kinds'): whether there are any, and
+  // F = Q(X), unscaled by the load factor (ElementFamily::addConfigurationLoads).
+  bool hasConfigurationLoads() const;
+  PetscErrorCode configurationLoads(Vec X, Vec F);
   PetscErrorCode addTimedLoads(PetscReal t, Vec R, PetscReal scale, bool skipSupported = false) const;
   // Consistent mass matrix with point masses; supported rows and columns are zero unless
   // maskSupports is false (prescribed motion: the inertia of moving supports loads the free DOFs).

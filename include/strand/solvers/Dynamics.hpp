@@ -66,7 +66,7 @@ struct DynamicsStep {
   bool suspect = false;   // the blow-up guard has seen energy created here (or a non-finite value)
   double kinetic = 0.0, strain = 0.0, potential = 0.0, dissipated = 0.0, supportWork = 0.0;
   double contact = 0.0;   // belt-pulley contact: the normal penalty's stored energy
-  double loadWork = 0.0;  // work of the time-dependent loads and the contact's other forces (trapezoidal)
+  double loadWork = 0.0;  // work of the time-dependent and configuration-dependent loads and the contact's other forces (trapezoidal)
   double constraintPosition = 0.0, constraintVelocity = 0.0;  // max |g(q)|, max |G v| over the joints
   double energy() const { return kinetic + strain + contact + potential + dissipated - supportWork - loadWork; }
 };
@@ -174,6 +174,7 @@ private:
   Vec _multipliers = nullptr, _notMultiplier = nullptr;  // 1 / 0 on multiplier DOFs, and 1 - that
   bool _damped = false, _moving = false, _constrained = false;
   bool _variableMass = false;  // kinds with M(q): their inertia in the residual (Assembler::addInertia)
+  bool _configurationLoads = false;  // loads Q(q) (the ALE kinds'): counted by their work, not in _fext
   bool _firstOrder = false, _explicit = false;  // StateSpace form; RK4 / ABM4
   bool _ownAlpha = false;                        // run() integrates with our strand_alpha TS
   std::string _schemeName;
