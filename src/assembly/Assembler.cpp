@@ -94,6 +94,7 @@ Assembler::~Assembler() {
   VecDestroy(&_xWork);
   VecDestroy(&_rWork);
   VecDestroy(&_vWork);
+  VecDestroy(&_inertiaWork);
   VecScatterDestroy(&_toRoot);
   VecDestroy(&_rootVec);
 }
@@ -416,8 +417,8 @@ PetscErrorCode Assembler::massMatrix(Mat M, bool maskSupports) {
 PetscErrorCode Assembler::addInertia(Vec X, Vec V, Vec A, Vec R) {
   PetscFunctionBeginUser;
   if (!hasVariableMass()) PetscFunctionReturn(0);
-  Vec F;
-  PetscCall(VecDuplicate(_xWork, &F));  // a vector of the layout: the element sums go into its local form
+  if (!_inertiaWork) PetscCall(VecDuplicate(_xWork, &_inertiaWork));  // the element sums go into its local form
+  Vec F = _inertiaWork;
   LocalRead x, v, a;
   LocalSum r;
   PetscCall(beginLocal(X, _xWork, &x));
@@ -431,7 +432,6 @@ PetscErrorCode Assembler::addInertia(Vec X, Vec V, Vec A, Vec R) {
   PetscCall(endLocal(&v));
   PetscCall(endLocal(&a));
   PetscCall(VecAXPY(R, 1.0, F));
-  PetscCall(VecDestroy(&F));
   PetscFunctionReturn(0);
 }
 

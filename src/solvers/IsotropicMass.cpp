@@ -55,6 +55,55 @@ PetscErrorCode readPart(Mat part, const PetscInt* globalColumn, PetscInt columnO
   PetscFunctionReturn(0);
 }
 
+// M without its zero entries (AIJ) when they are most of what it stores (a model whose mass is
+// mostly configuration-dependent, the ALE kinds', keeps only its rigid bodies' here: each product
+// would otherwise stream the whole pattern of zeros), else M itself, referenced.
+PetscErrorCode dropZeros(Mat M, Mat* op) {
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(M));
+  PetscInt rstart, rend, cstart, cend;
+  PetscFunctionBeginUser;
+  PetscCall(MatGetOwnershipRange(M, &rstart, &rend));
+  PetscCall(MatGetOwnershipRangeColumn(M, &cstart, &cend));
+  std::vector<PetscInt> own(rend - rstart, 0), other(rend - rstart, 0);
+  double counts[2] = {0.0, 0.0};  // nonzero, stored
+  for (PetscInt r = rstart; r < rend; ++r) {
+    PetscInt n;
+    const PetscInt* cols;
+    const PetscScalar* vals;
+    PetscCall(MatGetRow(M, r, &n, &cols, &vals));
+    for (PetscInt k = 0; k < n; ++k)
+      if (vals[k] != 0.0) ++(cols[k] >= cstart && cols[k] < cend ? own : other)[r - rstart];
+    counts[0] += own[r - rstart] + other[r - rstart];
+    counts[1] += n;
+    PetscCall(MatRestoreRow(M, r, &n, &cols, &vals));
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_DOUBLE, MPI_SUM, comm));
+  if (2.0 * counts[0] >= counts[1]) {
+    PetscCall(PetscObjectReference(reinterpret_cast<PetscObject>(M)));
+    *op = M;
+    PetscFunctionReturn(0);
+  }
+  Mat A;
+  PetscCall(MatCreate(comm, &A));
+  PetscCall(MatSetSizes(A, rend - rstart, cend - cstart, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetType(A, MATAIJ));
+  PetscCall(MatSeqAIJSetPreallocation(A, 0, own.data()));
+  PetscCall(MatMPIAIJSetPreallocation(A, 0, own.data(), 0, other.data()));
+  for (PetscInt r = rstart; r < rend; ++r) {
+    PetscInt n;
+    const PetscInt* cols;
+    const PetscScalar* vals;
+    PetscCall(MatGetRow(M, r, &n, &cols, &vals));
+    for (PetscInt k = 0; k < n; ++k)
+      if (vals[k] != 0.0) PetscCall(MatSetValue(A, r, cols[k], vals[k], INSERT_VALUES));
+    PetscCall(MatRestoreRow(M, r, &n, &cols, &vals));
+  }
+  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  *op = A;
+  PetscFunctionReturn(0);
+}
+
 }  // namespace
 
 PetscErrorCode isotropicMassOperator(Mat M, Mat* op, PetscBool* compact) {
@@ -87,8 +136,7 @@ PetscErrorCode isotropicMassOperator(Mat M, Mat* op, PetscBool* compact) {
   PetscCallMPI(MPI_Allreduce(&here, &everywhere, 1, MPI_INT, MPI_MIN, comm));
   *compact = static_cast<PetscBool>(everywhere == 1);
   if (!*compact) {
-    PetscCall(PetscObjectReference(reinterpret_cast<PetscObject>(M)));
-    *op = M;
+    PetscCall(dropZeros(M, op));
     PetscFunctionReturn(0);
   }
 

@@ -213,6 +213,7 @@ private:
   std::vector<char> _multiplierOwned;       // per owned DOF
   std::vector<double> _v0Owned;             // initial velocities, owned DOFs
   Vec _xWork = nullptr, _rWork = nullptr, _vWork = nullptr;  // ghosted work vectors
+  Vec _inertiaWork = nullptr;  // addInertia's sum (made at its first call)
   bool _haveGhosts = true;  // on some rank
   std::vector<char> _fixedLocal;           // per DOF of the ghosted local form
   std::vector<char> _noneFixed;            // all zero, same size

@@ -410,15 +410,15 @@ private:
     S B1[4], B2[4], dB1[4], dB2[4], ddB1[4], ddB2[4];
     Coefficients(double xi, const S& L) {
       const math::HermiteValues h = math::hermite(xi);
-      const S L2 = L * L, L3 = L2 * L, L4 = L3 * L;
+      const S i1 = 1.0 / L, i2 = i1 * i1, i3 = i2 * i1, i4 = i3 * i1;  // one division per point
       for (int k = 0; k < 4; ++k) {
         const bool pos = k % 2 == 0;
-        B1[k] = pos ? S(h.ds[k]) / L : S(h.ds[k]);
-        B2[k] = pos ? S(h.dds[k]) / L2 : S(h.dds[k]) / L;
-        dB1[k] = pos ? -S(h.ds[k]) / L2 : S(0.0);
-        dB2[k] = pos ? -2.0 * S(h.dds[k]) / L3 : -S(h.dds[k]) / L2;
-        ddB1[k] = pos ? 2.0 * S(h.ds[k]) / L3 : S(0.0);
-        ddB2[k] = pos ? 6.0 * S(h.dds[k]) / L4 : 2.0 * S(h.dds[k]) / L3;
+        B1[k] = pos ? h.ds[k] * i1 : S(h.ds[k]);
+        B2[k] = pos ? h.dds[k] * i2 : h.dds[k] * i1;
+        dB1[k] = pos ? -h.ds[k] * i2 : S(0.0);
+        dB2[k] = pos ? -2.0 * h.dds[k] * i3 : -h.dds[k] * i2;
+        ddB1[k] = pos ? 2.0 * h.ds[k] * i3 : S(0.0);
+        ddB2[k] = pos ? 6.0 * h.dds[k] * i4 : 2.0 * h.dds[k] * i3;
       }
     }
     template <class Q>
