@@ -535,6 +535,11 @@ private:
     for (const model::BodyDesc& b : _scene.bodies)
       if (b.hasMaterialMotion && speed == 0.0) speed = std::fabs(b.materialMotion.at(0.0).df) * b.initialStretch;
     _writer->setAttribute("transport_speed", speed);
+    if (std::isnan(factor)) {
+      say("transport speed " + fmt("%.6g m/s", speed) + "; no critical speed: the span is curved, so its steady "
+          "state changes with the speed (its tension rises by rho A v^2, its shape stays: Routh's catenary)");
+      return;
+    }
     if (std::isinf(factor)) {
       say("transport speed " + fmt("%.6g m/s", speed) + "; the steady flow does not diverge at any speed");
       return;

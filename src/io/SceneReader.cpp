@@ -941,9 +941,7 @@ public:
       for (const model::MaterialNodeDesc& m : scene_.bodies[b].materialNodes) nodesMove = nodesMove || m.hasMotion;
       if (scene_.analysis != model::Analysis::Dynamic && nodesMove)
         failAt(scene_.bodies[b].mark, "material_nodes with a motion move in time: only with analysis: dynamic");
-      if (scene_.analysis == model::Analysis::Static && scene_.bodies[b].hasMaterialMotion)
-        failAt(scene_.bodies[b].mark, "material_motion is a motion in time: with analysis: dynamic, or modes about "
-                                      "the steady flow");
+      // static with material_motion: the state of the steady flow at its rate at t = 0 (StaticSolver)
       if (scene_.analysis != model::Analysis::Dynamic && scene_.bodies[b].hasPayout)
         failAt(scene_.bodies[b].mark, "payout is a motion in time: only with analysis: dynamic");
     }

@@ -127,6 +127,19 @@ PetscErrorCode ModalSolver::addSteadyFlowInertia(Vec X, bool needG) {
   if (!_Kq) PetscCall(_asm.dofs().createMatrix(&_Kq, "modal_", MATAIJ));
   Kq = _Kq;
   PetscCall(_asm.inertiaJacobian(X, V0, A0, 0.0, 0.0, Kq));
+  {  // does the state carry the flow's inertia F(X, V0, 0)? zero (round-off) on a straight span;
+     // on a curved one of order rho A v^2 kappa h against Kq's rho A v^2 / h
+    Vec F;
+    PetscReal f, k;
+    PetscCall(VecDuplicate(V0, &F));
+    PetscCall(VecSet(F, 0.0));
+    PetscCall(_asm.addInertia(X, V0, A0, F));
+    PetscCall(_asm.zeroSupportedRows(F));
+    PetscCall(VecNorm(F, NORM_INFINITY, &f));
+    PetscCall(MatNorm(Kq, NORM_INFINITY, &k));
+    _curvedFlow = f > 1e-8 * k;
+    PetscCall(VecDestroy(&F));
+  }
   PetscCall(MatAXPY(_K, 1.0, Kq, SUBSET_NONZERO_PATTERN));
   if (needG) {
     PetscCall(_asm.inertiaJacobian(X, V0, A0, 1.0, 0.0, _G));
@@ -143,10 +156,18 @@ PetscErrorCode ModalSolver::addSteadyFlowInertia(Vec X, bool needG) {
 // the lowest frequency falls to zero) at the smallest s with K_e phi = s^2 (-K_q) phi, i.e. at
 // s = 1 / sqrt(nu_max) for the largest nu of (-K_q) phi = nu K_e phi (generalized, K_e
 // factored). For a pinned span this is v_d^2 = (T + EI (pi/l)^2) / rho (Wickert & Mote 1990).
+// That holds while the steady state does not change with the speed (a straight span). A curved
+// span's steady state carries the flow's inertia: its tension rises by rho A v^2 with the speed
+// (its effective tension stays the one at rest: Routh), so a hanging moving chain does not diverge
+// and the frozen estimate would be wrong: NaN.
 PetscErrorCode ModalSolver::divergenceFactor(double* factor) {
   PetscFunctionBeginUser;
   *factor = std::numeric_limits<double>::infinity();
   if (!_transport || !_Kq) PetscFunctionReturn(0);
+  if (_curvedFlow) {
+    *factor = std::numeric_limits<double>::quiet_NaN();
+    PetscFunctionReturn(0);
+  }
   MPI_Comm comm = _asm.dofs().comm();
   Mat B, Ke;
   PetscCall(MatCreateSubMatrix(_Kq, _free, _free, MAT_INITIAL_MATRIX, &B));

@@ -1,5 +1,6 @@
 #include "strand/solvers/StaticSolver.hpp"
 #include "strand/solvers/InterfaceSchur.hpp"
+#include "strand/solvers/ModalSolver.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -48,12 +49,23 @@ StaticSolver::StaticSolver(assembly::Assembler& assembler, int loadSteps) : _asm
   KSP ksp;
   PetscCallAbort(dofs.comm(), SNESGetKSP(_snes, &ksp));
   PetscCallAbort(dofs.comm(), setDirectSolverDefaults(ksp, assembler.hasConstraints()));
+  _flow = assembler.hasVariableMass() && ModalSolver::materialFlows(assembler);
+  if (_flow) {
+    PetscCallAbort(dofs.comm(), VecDuplicate(_R, &_V0));
+    PetscCallAbort(dofs.comm(), VecDuplicate(_R, &_A0));
+    PetscCallAbort(dofs.comm(), VecDuplicate(_R, &_F));
+    PetscCallAbort(dofs.comm(), VecSet(_V0, 0.0));
+    PetscCallAbort(dofs.comm(), VecSet(_A0, 0.0));
+    PetscCallAbort(dofs.comm(), assembler.prescribedMotion(0.0, nullptr, _V0, nullptr));  // the material rates
+    PetscCallAbort(dofs.comm(), dofs.createMatrix(&_Kq, "static_", MATAIJ));
+  }
 }
 
 StaticSolver::~StaticSolver() {
   SNESDestroy(&_snes);
   MatDestroy(&_J);
-  VecDestroy(&_R);
+  MatDestroy(&_Kq);
+  for (Vec* v : {&_R, &_V0, &_A0, &_F}) VecDestroy(v);
 }
 
 PetscErrorCode StaticSolver::setFromOptions() {
@@ -73,6 +85,12 @@ PetscErrorCode StaticSolver::formFunction(SNES, Vec X, Vec R, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<StaticSolver*>(ctx);
   PetscCall(self->_asm.staticResidual(X, self->_loadFactor, R));
+  if (self->_flow) {  // the steady flow's inertia at full speed (not a load: not stepped)
+    PetscCall(VecSet(self->_F, 0.0));
+    PetscCall(self->_asm.addInertia(X, self->_V0, self->_A0, self->_F));
+    PetscCall(self->_asm.zeroSupportedRows(self->_F));
+    PetscCall(VecAXPY(R, 1.0, self->_F));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -80,6 +98,10 @@ PetscErrorCode StaticSolver::formJacobian(SNES, Vec X, Mat J, Mat, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<StaticSolver*>(ctx);
   PetscCall(self->_asm.staticJacobian(X, self->_loadFactor, J));
+  if (self->_flow) {  // dF/dX at the flow's rates (supported rows and columns left out)
+    PetscCall(self->_asm.inertiaJacobian(X, self->_V0, self->_A0, 0.0, 0.0, self->_Kq));
+    PetscCall(MatAXPY(J, 1.0, self->_Kq, SUBSET_NONZERO_PATTERN));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -69,7 +69,12 @@ public:
   bool transport() const { return _transport; }
   // The full mass matrix of the last solve, M(X) (supported rows and columns zero).
   Mat massMatrix() const { return _M; }
+  // NaN when the state carries the flow's inertia (a curved span: its tension rises by rho A v^2
+  // with the speed, so the frozen-state estimate does not apply).
   PetscErrorCode divergenceFactor(double* factor);
+  // Whether any prescribed rate is nonzero at t = 0 in a model with ALE kinds (the material flows;
+  // the static state is then the steady flow's, StaticSolver).
+  static bool materialFlows(assembly::Assembler& assembler);
 
 private:
   PetscErrorCode assemble(Vec X);
@@ -78,13 +83,13 @@ private:
   PetscErrorCode solveProjected(ModalResult* result);
   PetscErrorCode toFull(Vec freeVec, Vec* full);
   PetscErrorCode addSteadyFlowInertia(Vec X, bool needG);
-  static bool materialFlows(assembly::Assembler& assembler);
 
   assembly::Assembler& _asm;
   ModalOptions _opt;
   model::ModalMethod _method;
   bool _transport = false;  // ALE kinds with material flowing: G from the transport (quadratic problem)
   Mat _Kq = nullptr;  // the transport's stiffness dF/dq at the current material rates (ALE kinds)
+  bool _curvedFlow = false;  // the steady state carries the flow's inertia (a curved span): it changes with the speed
   Mat _K = nullptr, _M = nullptr, _G = nullptr, _Kf = nullptr, _Mf = nullptr, _Gf = nullptr;
   IS _free = nullptr;
   double _shift = 0.0, _lambdaScale = 0.0;  // eps target (negative, small) and |K|/|M| of the last solve

@@ -57,6 +57,12 @@ private:
   SNES _snes = nullptr;
   Mat _J = nullptr;
   Vec _R = nullptr;
+  // A steady material flow (ALE bodies whose material coordinates move at t = 0): the static state
+  // is the flow's, its inertia F(X, V0, 0) with the nodes at rest and the material rates V0 in the
+  // residual and dF/dX in the Newton matrix (the transport's centripetal rho A v^2 kappa)
+  bool _flow = false;
+  Vec _V0 = nullptr, _A0 = nullptr, _F = nullptr;
+  Mat _Kq = nullptr;
   std::function<bool()> _stopCheck;
   bool _stopped = false;
 };
