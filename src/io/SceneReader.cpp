@@ -1453,7 +1453,7 @@ private:
   }
 
   // type: sliding: an inner node of an ALE body (material slides through it), in dynamics, on a body
-  // whose material coordinates nothing else moves (Model::addMaterialSpacingJoints).
+  // whose material nothing moves but a payout or a reel (Model::addMaterialJoints).
   void checkSliding(const Field& item, const model::SupportDesc& s) const {
     const Field type = item.child("type");
     const BodyDesc& body = findBody(item.child("body"));
@@ -1464,8 +1464,9 @@ private:
     if (s.at.node <= 0 || s.at.node >= body.elements)
       item.child("node").fail("sliding: an inner node (1.." + std::to_string(body.elements - 1) +
                               "); an end node is a material point, the end of the body");
-    if (body.hasPayout || body.hasMaterialMotion || !body.materialNodes.empty())
-      type.fail("sliding: not built on a body whose material moves by payout, material_motion or material_nodes");
+    if (body.hasMaterialMotion || !body.materialNodes.empty())
+      type.fail("sliding: not built on a body whose material moves by material_motion or material_nodes (a payout "
+                "or a reel: yes)");
     for (const model::SupportDesc& o : scene_.supports)
       if (o.at.body == s.at.body && o.at.node == s.at.node) type.fail("sliding: this node has another support");
   }
@@ -1493,9 +1494,6 @@ private:
         bodyField.fail("this body's material already moves by payout, material_motion or material_nodes");
       for (const model::ReelDesc& other : scene_.reels)
         if (other.body == r.body) bodyField.fail("body '" + r.body + "' already has a reel ('" + other.name + "')");
-      for (const model::SupportDesc& s : scene_.supports)
-        if (s.at.body == r.body && s.type == model::SupportType::Sliding)
-          bodyField.fail("a reel on a body with a sliding support is not built");
       if (const Field node = item.child("node"); node.present()) {
         if (node.isScalar("last")) r.node = -1;
         else if (node.integer("0 or 'last'") == 0) r.node = 0;

@@ -536,7 +536,8 @@ Model::ClampDirections Model::addClampDirectionJoints(Build& build) {
 // p_n - (1 - w) p_a - w p_c = 0, w = (n - a) / (c - a), a linear joint (ConstraintForm::Linear)
 // over the three material blocks with one multiplier. A reel's block (phi, padding) ties its exit
 // node: p_exit - p_exit(0) = -/+ R phi (node 0: the body grows at its start, p falls; the last
-// node: p rises). Returns the material dofs left free (model numbering).
+// node: p rises). A payout on a body with sliding nodes prescribes node 0's p alone, the joints
+// spreading it. Returns the material dofs left free (model numbering).
 std::vector<int> Model::addMaterialJoints(Build& build) {
   const SceneDescription& scene = build.scene;
   std::vector<int> freeDofs;
@@ -569,11 +570,15 @@ std::vector<int> Model::addMaterialJoints(Build& build) {
       jt.equations.push_back(e);
       _joints.push_back(std::move(jt));
     }
+    // a payout with sliding nodes moves node 0 alone (prescribed); the spacing joints carry it on
+    // (without them every node's share is prescribed: addSupports)
+    std::vector<char> moving(b.elements + 1, 0);
+    if (scene.bodies[bi].hasPayout && anchors.size() > 2) moving[0] = 1;
     std::sort(anchors.begin(), anchors.end());
     anchors.erase(std::unique(anchors.begin(), anchors.end()), anchors.end());
     for (size_t j = 0; j + 1 < anchors.size(); ++j) {
       const int a = anchors[j], c = anchors[j + 1];
-      if (!sliding[a] && !sliding[c]) continue;
+      if (!sliding[a] && !sliding[c] && !moving[a] && !moving[c]) continue;
       for (int n = a + 1; n < c; ++n) {
         const double w = static_cast<double>(n - a) / (c - a);
         Joint jt;
@@ -640,8 +645,11 @@ void Model::addSupports(Build& build) {
       _fixed[dof] = !materialFree[dof];
       for (int i = elements::usedComponents(b.info().layout[k], _dim); i < _dim; ++i) _fixed[dof + i] = 1;
       if (scene.bodies[bi].hasMaterialMotion) _prescribed.push_back({dof, scene.bodies[bi].materialMotion, 1.0});
-      if (scene.bodies[bi].hasPayout && n < b.elements)  // equal spacing: node n moves by -(N - n)/N of it
+      if (scene.bodies[bi].hasPayout && n < b.elements && !materialFree[dof]) {
+        // equal spacing: node n moves by -(N - n)/N of it (with sliding nodes only node 0 is
+        // prescribed, by all of it: the others are free, spread by spacing joints)
         _prescribed.push_back({dof, scene.bodies[bi].payout, -static_cast<double>(b.elements - n) / b.elements});
+      }
       // material_nodes: a listed node moves by its motion; the ones between two listed nodes a < n < c
       // by (1 - w) of a's and w of c's, w = (n - a) / (c - a) (equal spacing, Eq. 51)
       for (const auto& [function, scale] : weights[n]) _prescribed.push_back({dof, function, scale});

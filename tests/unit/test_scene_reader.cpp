@@ -937,7 +937,8 @@ TEST(SceneReader, RigidBodiesAndJoints) {
   EXPECT_NO_THROW(parseScene(ring, "ring.yaml"));
   EXPECT_TRUE(failsWith(edit(ring, "node: 2", "node: 0"), 4, "supports[0].node", "an inner node (1..3)"));
   EXPECT_TRUE(failsWith(edit(ring, "AleCable2d", "AncfCable2d"), 4, "supports[0].type", "only on an ALE body"));
-  EXPECT_TRUE(failsWith(edit(ring, "rho: 1000}}", "rho: 1000}, payout: {function: linear, rate: 1}}"), 4,
+  EXPECT_NO_THROW(parseScene(edit(ring, "rho: 1000}}", "rho: 1000}, payout: {function: linear, rate: 1}}"), "r.yaml"));
+  EXPECT_TRUE(failsWith(edit(ring, "rho: 1000}}", "rho: 1000}, material_motion: {function: linear, rate: 1}}"), 4,
                         "supports[0].type", "not built on a body whose material moves"));
   EXPECT_TRUE(failsWith(edit(ring, "dt: 1e-3", "integrator: rk4, dt: 1e-3"), 5, "dynamics.integrator", "explicit"));
   // reels: on an ALE body's end, in dynamics; driven (rotation, starting at rest) or free (inertia,
