@@ -7,13 +7,16 @@
 // The two run alternately in one process, `-rounds` times (default 3); each run takes `-steps`
 // steps (default 30) after the start; the ALE cost factor is the median over rounds of the ratio
 // of the wall times per step. One JSON line per run, then a summary line. Options: -elements N
-// (default 10000), -steps, -rounds. Under mpirun the same on every rank count.
+// (default 10000), -steps, -rounds. Under mpirun the same on every rank count. With -only ale (or
+// cable) one run of that model in tests/benchmarks/parallel_ratio.py's terms:
+//   parallel_ratio.py build/tests/benchmarks/bench_ale_tether mpiexec --rounds 3 -only ale -steps 60
 #include <petscsys.h>
 #include <petsctime.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "strand/elements/ElementRegistry.hpp"
@@ -77,7 +80,8 @@ model::SceneDescription tether(bool ale, int elements, int steps) {
 }
 
 struct Run {
-  double setup = 0.0, perStep = 0.0, newtonPerStep = 0.0;
+  double setup = 0.0, perStep = 0.0, newtonPerStep = 0.0, tipY = 0.0;
+  long steps = 0;
   std::string failure;
 };
 
@@ -102,8 +106,12 @@ Run run(bool ale, int elements, int steps) {
   PetscCallAbort(comm, dyn.run(X, V, cb, &r.failure));
   PetscCallAbort(comm, PetscTime(&t2));
   r.setup = t1 - t0;
+  r.steps = taken;
   r.perStep = (t2 - t1) / std::max(1L, taken);
   r.newtonPerStep = static_cast<double>(newton) / std::max(1L, taken);
+  std::vector<double> q;
+  PetscCallAbort(comm, p.assembler().gatherToRoot(X, q));
+  if (!q.empty()) r.tipY = q[p.model().bodies()[0].posBlock.back() * 2 + 1];
   VecDestroy(&X);
   VecDestroy(&V);
   return r;
@@ -120,6 +128,22 @@ int main(int argc, char** argv) {
   int ranks, rank;
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  // -only ale|cable: one run of one model, one line in parallel_ratio.py's terms (steady_ms_per_step:
+  // the steps after the consistent start; ms_per_step: the whole run; tip_z: the tether end's y)
+  char only[16] = "";
+  PetscBool hasOnly = PETSC_FALSE;
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-only", only, sizeof(only), &hasOnly));
+  if (hasOnly) {
+    const bool ale = std::string(only) == "ale";
+    const Run r = run(ale, static_cast<int>(elements), static_cast<int>(steps));
+    if (rank == 0)
+      std::printf("{\"bench\": \"ale_tether\", \"model\": \"%s\", \"elements\": %d, \"ranks\": %d, \"steps\": %ld, "
+                  "\"steady_ms_per_step\": %.4f, \"ms_per_step\": %.4f, \"tip_z\": %.15e, \"failure\": \"%s\"}\n",
+                  ale ? "ale" : "cable", static_cast<int>(elements), ranks, r.steps, 1e3 * r.perStep,
+                  1e3 * (r.setup + r.perStep * r.steps) / std::max(1L, r.steps), r.tipY, r.failure.c_str());
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   std::vector<double> ratios;
   for (PetscInt k = 0; k < rounds; ++k) {
     Run pair[2];
