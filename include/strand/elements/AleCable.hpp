@@ -320,19 +320,28 @@ public:
   static void distributedLoad(const Body& b, const double* q0, const S* u, const double* fvec, S* Q) {
     S q[kDof], zero[kDof];
     for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], zero[k] = S(0.0), Q[k] = S(0.0);
+    (void)zero;
     const S L = q[kP2] - q[kP1];
     for (int g = 0; g < b.inertial.size(); ++g) {
-      const Point<S> pt(b.inertial.x[g], q, zero, zero, L);
+      // Q = L w S^T f with S's columns N_k (slots) and S_p1, S_p2 (Point's; only N, phi_X, phi_L
+      // enter, so they are formed here without the velocity and acceleration terms)
+      const double xi = b.inertial.x[g];
+      const math::HermiteValues h = math::hermite(xi);
+      S N[4], phiXf(0.0), phiLf(0.0);  // phi_X . f, phi_L . f
+      for (int k = 0; k < 4; ++k) {
+        const bool pos = k % 2 == 0;
+        N[k] = pos ? S(h.s[k]) : L * h.s[k];
+        const S Nx = pos ? S(h.ds[k]) : L * h.ds[k];
+        for (int i = 0; i < D; ++i) {
+          phiXf += Nx * (q[slotIndex(k) + i] * fvec[i]);
+          if (!pos) phiLf += h.s[k] * (q[slotIndex(k) + i] * fvec[i]);
+        }
+      }
       const S scale = b.inertial.w[g] * L;
       for (int k = 0; k < 4; ++k)
-        for (int i = 0; i < D; ++i) Q[slotIndex(k) + i] += scale * pt.N[k] * fvec[i];
-      S s1(0.0), s2(0.0);
-      for (int i = 0; i < D; ++i) {
-        s1 += pt.Sp1[i] * fvec[i];
-        s2 += pt.Sp2[i] * fvec[i];
-      }
-      Q[kP1] += scale * s1;
-      Q[kP2] += scale * s2;
+        for (int i = 0; i < D; ++i) Q[slotIndex(k) + i] += scale * N[k] * fvec[i];
+      Q[kP1] += scale * (-phiXf * (1.0 - xi) / L - phiLf);  // S_p1 . f
+      Q[kP2] += scale * (-phiXf * xi / L + phiLf);          // S_p2 . f
     }
   }
 
