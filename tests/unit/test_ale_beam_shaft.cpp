@@ -212,6 +212,9 @@ TEST(AleBeamShaft, TwistDampingOnTheHeldMaterialIsTheLinearElements) {
   const double G = kE / (2.0 * (1.0 + kNu)), torque = G * fx.Ip * 0.02 * (fx.v[E::kT2] - fx.v[E::kT1]) / 0.7;
   EXPECT_NEAR(fd[E::kT2] - f0[E::kT2], torque, 1e-12 * std::fabs(torque));
   EXPECT_NEAR(fd[E::kT1] - f0[E::kT1], -torque, 1e-12 * std::fabs(torque));
-  for (int k = 0; k < N; ++k)
-    if (k != E::kT1 && k != E::kT2 && k != E::kP1 && k != E::kP2) EXPECT_EQ(fd[k], f0[k]) << "entry " << k;
+  for (int k = 0; k < N; ++k) {
+    if (k != E::kT1 && k != E::kT2 && k != E::kP1 && k != E::kP2) {
+      EXPECT_EQ(fd[k], f0[k]) << "entry " << k;
+    }
+  }
 }
