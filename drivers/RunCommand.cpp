@@ -245,7 +245,7 @@ private:
     if (m.reels().empty()) PetscFunctionReturn(0);
     std::vector<double> x, v;
     PetscCall(_problem.assembler().gatherToRoot(X, x));
-    PetscCall(_problem.assembler().gatherToRoot(V, v));
+    PetscCall(_problem.assembler().toModelOrder(V, v));  // velocities: no reference to add
     const int D = m.dim();  // x, v: model order, coordinates q (not displacements)
     for (size_t r = 0; r < m.reels().size(); ++r) {
       const model::ReelDesc& d = m.reels()[r];
@@ -259,6 +259,17 @@ private:
       PetscCallCXX(_writer->writeScalarSeries(stem + "speed", v.empty() ? 0.0 : v[dof]));
       PetscCallCXX(_writer->writeScalarSeries(stem + "content", d.content - d.radius * phi));
       PetscCallCXX(_writer->writeScalarSeries(stem + "length", length));
+      // a reel that ran empty pays out material it does not have, one that winds the body in
+      // shrinks its elements to nothing: stop there (the run ends with this message, its output kept)
+      int stop = 0;
+      if (!x.empty() && _reelStop.empty()) stop = d.content - d.radius * phi < 0.0 ? 1 : length < 1e-3 * b.length ? 2 : 0;
+      MPI_Bcast(&stop, 1, MPI_INT, 0, _comm);
+      if (stop == 1)
+        _reelStop = "reel '" + d.name + "' ran empty: its content (" + fmt("%g", d.content) +
+                    " m) is paid out; give it more 'content' or stop the payout (scene " + _scene.file + ")";
+      if (stop == 2)
+        _reelStop = "reel '" + d.name + "' wound body '" + b.name + "' in to under 0.1 % of its length (" +
+                    fmt("%g", b.length) + " m); its elements shrink to nothing (scene " + _scene.file + ")";
     }
     PetscFunctionReturn(0);
   }
@@ -320,7 +331,7 @@ private:
         PetscTime(&now);
         wallTimeReached = now - start > _checkpoint.wallTime;
       }
-      return wallTimeReached || stopSignal() != 0;
+      return wallTimeReached || stopSignal() != 0 || !_reelStop.empty();
     });
     _writer->setAttribute("dt", d.dt);
     const bool moving = _problem.model().hasPrescribedMotion();
@@ -432,6 +443,13 @@ private:
         say("Newton start in use: the " + newtonStart + " predictor (docs/user-guide.md, \"Newton start\")");
     }
     int code = failure->empty() ? kExitSuccess : kExitDiverged;
+    if (code == kExitSuccess && !_reelStop.empty()) {
+      solvers::ResumeState at;
+      PetscCallAbort(_comm, dyn.saveState(&at));
+      *failure = _reelStop + "; stopped at t = " + fmt("%.6g", at.time) + " s, step " + std::to_string(at.step);
+      VecDestroy(&V);
+      return kExitDiverged;
+    }
     if (code == kExitSuccess && dyn.stoppedByRequest()) {
       writeDynamicsCheckpoint(_comm, _scene, _problem, dyn, X, V, _checkpoint.path);
       solvers::ResumeState at;
@@ -575,6 +593,7 @@ private:
   std::unique_ptr<io::OutputWriter> _writer;
   std::unique_ptr<io::Probes> _probes;
   PetscInt _newtonTotal = 0;
+  std::string _reelStop;  // why a reel stops the run (writeReelSeries), empty while it may go on
   CheckpointOptions _checkpoint;
   io::CheckpointData _restart;
   int _firstStep = 0;  // the step a restarted run starts from (no checkpoint is rewritten there)

@@ -1121,7 +1121,7 @@ private:
         if (b.name == s.at.body && k.layout[k.orientationBlock] == elements::BlockRole::AxialGradient) hubClamp = &s;
       }
     }
-    bool sliding = false;  // its spacing joints (Model::addMaterialSpacingJoints)
+    bool sliding = false;  // its spacing joints (Model::addMaterialJoints)
     for (const model::SupportDesc& s : scene_.supports) sliding = sliding || s.type == model::SupportType::Sliding;
     const bool constrained = !scene_.joints.empty() || (ctx_.dim == 3 && !scene_.rigidBodies.empty()) || hubClamp || sliding;
     if (model::isExplicit(d.integrator) && hubClamp && scene_.joints.empty())
@@ -1495,9 +1495,10 @@ private:
       for (const model::ReelDesc& other : scene_.reels)
         if (other.body == r.body) bodyField.fail("body '" + r.body + "' already has a reel ('" + other.name + "')");
       if (const Field node = item.child("node"); node.present()) {
-        if (node.isScalar("last")) r.node = -1;
-        else if (node.integer("0 or 'last'") == 0) r.node = 0;
-        else node.fail("a reel pays out at an end of the body: 0 or 'last'");
+        const long n = node.isScalar("last") ? -1 : node.integer("0 or 'last'");
+        if (n == 0) r.node = 0;
+        else if (n == -1 || n == body.elements) r.node = -1;
+        else node.fail("a reel pays out at an end of the body: 0 or 'last' (" + std::to_string(body.elements) + ")");
       }
       r.radius = requirePositive(item.child("radius"));
       if (const Field c = item.child("content"); c.present()) r.content = requireNonNegative(c);

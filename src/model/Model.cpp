@@ -211,8 +211,6 @@ bool Model::velocityDependent() const {
     if (b.velocityDependent) return true;
   for (const ReelDesc& r : _reels)
     if (r.damping > 0.0) return true;
-  for (const PulleyDesc& p : _pulleys)  // free pulleys' rotational damping, a tensioner's damper
-    if (p.damping > 0.0 || (p.hasSlide && p.slide.damping > 0.0)) return true;
   for (const PulleyContactSet& c : _contacts)  // contact damping and friction depend on the belt's velocity
     if (c.law.damping > 0.0 || c.law.friction != contact::FrictionLaw::None) return true;
   for (const PulleyDesc& p : _pulleys)
@@ -570,15 +568,13 @@ std::vector<int> Model::addMaterialJoints(Build& build) {
       jt.equations.push_back(e);
       _joints.push_back(std::move(jt));
     }
-    // a payout with sliding nodes moves node 0 alone (prescribed); the spacing joints carry it on
-    // (without them every node's share is prescribed: addSupports)
-    std::vector<char> moving(b.elements + 1, 0);
-    if (scene.bodies[bi].hasPayout && anchors.size() > 2) moving[0] = 1;
+    // (a payout with sliding nodes: every stretch between anchors has a sliding end, so its nodes get
+    // joints; node 0's p alone is prescribed, addSupports)
     std::sort(anchors.begin(), anchors.end());
     anchors.erase(std::unique(anchors.begin(), anchors.end()), anchors.end());
     for (size_t j = 0; j + 1 < anchors.size(); ++j) {
       const int a = anchors[j], c = anchors[j + 1];
-      if (!sliding[a] && !sliding[c] && !moving[a] && !moving[c]) continue;
+      if (!sliding[a] && !sliding[c]) continue;
       for (int n = a + 1; n < c; ++n) {
         const double w = static_cast<double>(n - a) / (c - a);
         Joint jt;

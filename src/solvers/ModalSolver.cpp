@@ -128,7 +128,7 @@ PetscErrorCode ModalSolver::addSteadyFlowInertia(Vec X, bool needG) {
   Kq = _Kq;
   PetscCall(_asm.inertiaJacobian(X, V0, A0, 0.0, 0.0, Kq));
   {  // does the state carry the flow's inertia F(X, V0, 0)? zero (round-off) on a straight span;
-     // on a curved one of order rho A v^2 kappa h against Kq's rho A v^2 / h
+     // on a curved one of order rho A v^2 kappa h against Kq's rho A v^2 / h times the span
     Vec F;
     PetscReal f, k;
     PetscCall(VecDuplicate(V0, &F));
@@ -137,7 +137,7 @@ PetscErrorCode ModalSolver::addSteadyFlowInertia(Vec X, bool needG) {
     PetscCall(_asm.zeroSupportedRows(F));
     PetscCall(VecNorm(F, NORM_INFINITY, &f));
     PetscCall(MatNorm(Kq, NORM_INFINITY, &k));
-    _curvedFlow = f > 1e-8 * k;
+    _curvedFlow = f > 1e-8 * k * _asm.model().scales().length;  // a force against Kq times a length
     PetscCall(VecDestroy(&F));
   }
   PetscCall(MatAXPY(_K, 1.0, Kq, SUBSET_NONZERO_PATTERN));

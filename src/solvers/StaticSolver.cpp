@@ -57,7 +57,7 @@ StaticSolver::StaticSolver(assembly::Assembler& assembler, int loadSteps) : _asm
     PetscCallAbort(dofs.comm(), VecSet(_V0, 0.0));
     PetscCallAbort(dofs.comm(), VecSet(_A0, 0.0));
     PetscCallAbort(dofs.comm(), assembler.prescribedMotion(0.0, nullptr, _V0, nullptr));  // the material rates
-    PetscCallAbort(dofs.comm(), dofs.createMatrix(&_Kq, "static_", MATAIJ));
+    PetscCallAbort(dofs.comm(), dofs.createMatrix(&_Kq, "static_"));  // J's type: MatAXPY adds it fast
   }
 }
 

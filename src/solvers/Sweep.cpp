@@ -252,7 +252,8 @@ PetscErrorCode runSweep(MPI_Comm comm, const model::SceneDescription& scene, Swe
     ModalResult r;
     PetscCall(modal->solve(X, &r));
     if (sw.parameter == model::SweepParameter::TransportSpeed && p > 0.0 && std::isnan(out->criticalSpeed)) {
-      double s = 0.0;  // the steady span's K_e and K_q / v^2 do not change with v: once is enough
+      double s = 0.0;  // a straight span's K_e and K_q / v^2 do not change with v: once is enough (a curved
+                       // span's do: NaN, none reported, ModalSolver::divergenceFactor)
       PetscCall(modal->divergenceFactor(&s));
       out->criticalSpeed = s * p;
     }

@@ -1283,3 +1283,23 @@ TEST(Cli, ANearlySingularSaddlePointStopsWithAMessageNotAWrongAnswer) {
   EXPECT_NE(forced.output.find("-dyn_pc_factor_mat_solver_type mumps"), std::string::npos) << forced.output;
   fs::remove_all(dir);
 }
+
+// A reel that runs empty stops the run with a message naming it (it would pay out material it
+// does not have), and the output so far stays readable.
+TEST(Cli, AReelThatRunsEmptyStopsTheRunWithAMessage) {
+  const fs::path dir = scratchDir("reel-empty");
+  writeFile(dir / "reel.yaml",
+            "analysis: dynamic\ndimension: 2\n"
+            "bodies:\n  - name: tether\n    element: AleCable2d\n    elements: 10\n"
+            "    geometry: {kind: line, start: [0, 0], end: [0, -10]}\n"
+            "    section: {E: 2.0e11, A: 7.85e-5, I: 4.9e-10, rho: 7850}\n"
+            "supports:\n  - {body: tether, node: 0, type: pinned}\n"
+            "reels:\n  - {name: winch, body: tether, radius: 0.5, inertia: 2, content: 0.5}\n"
+            "loads:\n  gravity: [0, -9.81]\n  function: {function: ramp, value: 1, start: 0, end: 0.2}\n"
+            "dynamics: {dt: 2.0e-3, t_end: 3}\n");
+  auto run = runCommand(strandBinary() + " run " + (dir / "reel.yaml").string() + " -o " + (dir / "a.h5").string());
+  EXPECT_EQ(run.exitCode, 3) << run.output;
+  EXPECT_NE(run.output.find("reel 'winch' ran empty"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("readable, status = diverged"), std::string::npos) << run.output;
+  fs::remove_all(dir);
+}

@@ -955,6 +955,7 @@ TEST(SceneReader, RigidBodiesAndJoints) {
   EXPECT_FALSE(rs.reels[0].driven);
   EXPECT_DOUBLE_EQ(rs.reels[0].torque.at(0.0).f, 3.0);
   EXPECT_EQ(parseScene(edit(reel, "radius: 0.5", "node: last, radius: 0.5"), "reel.yaml").reels[0].node, -1);
+  EXPECT_EQ(parseScene(edit(reel, "radius: 0.5", "node: 4, radius: 0.5"), "reel.yaml").reels[0].node, -1);  // the last
   EXPECT_TRUE(failsWith(edit(reel, "radius: 0.5", "node: 2, radius: 0.5"), 5, "reels[0].node", "0 or 'last'"));
   EXPECT_TRUE(failsWith(edit(reel, "AleCable2d", "AncfCable2d"), 5, "reels[0].body", "the material of an ALE body"));
   EXPECT_TRUE(failsWith(edit(reel, "rho: 1000}}", "rho: 1000}, payout: {function: linear, rate: 1}}"), 5,

@@ -318,9 +318,8 @@ public:
 
   template <class S>
   static void distributedLoad(const Body& b, const double* q0, const S* u, const double* fvec, S* Q) {
-    S q[kDof], zero[kDof];
-    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], zero[k] = S(0.0), Q[k] = S(0.0);
-    (void)zero;
+    S q[kDof];
+    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], Q[k] = S(0.0);
     const S L = q[kP2] - q[kP1];
     for (int g = 0; g < b.inertial.size(); ++g) {
       // Q = L w S^T f with S's columns N_k (slots) and S_p1, S_p2 (Point's; only N, phi_X, phi_L

@@ -17,7 +17,7 @@
 //   Orthogonal  a . b = 0                     (1 equation: a slope normal to a direction);
 //   Linear      sum_k c_k q_k - length = 0 over component 0 of blocks 0, 1, 2, c = a.c (1 equation:
 //               material coordinates held equally spaced, seed 000 Eq. 51: p_n - (1-w) p_a - w p_c;
-//               a reel paying out, p_exit + R phi - p_exit(0)).
+//               a reel paying out, p_exit +/- R phi - p_exit(0), + at node 0, - at the last).
 // For each form: g, its gradient G = dg/dq (m x n, row-major) and the contracted Hessian
 // H = sum_k w_k d^2 g_k / dq^2 (n x n) that the Newton matrix needs for the term G^T lambda.
 #pragma once
