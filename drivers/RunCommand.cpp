@@ -243,27 +243,42 @@ private:
     PetscFunctionBeginUser;
     const model::Model& m = _problem.model();
     if (m.reels().empty()) PetscFunctionReturn(0);
-    std::vector<double> x, v;
-    PetscCall(_problem.assembler().gatherToRoot(X, x));
-    PetscCall(_problem.assembler().toModelOrder(V, v));  // velocities: no reference to add
-    const int D = m.dim();  // x, v: model order, coordinates q (not displacements)
+    // per reel phi, phi', p_0, p_N: each read by the rank that owns it, summed onto every rank (no
+    // gather of the whole state each step)
+    const model::DofMap& dofs = _problem.dofs();
+    const int D = m.dim();
+    std::vector<double> values(4 * m.reels().size(), 0.0);
+    const PetscScalar *x, *v;
+    PetscCall(VecGetArrayRead(X, &x));
+    PetscCall(VecGetArrayRead(V, &v));
+    auto read = [&](const PetscScalar* a, int block, bool coordinate) {  // component 0 of a model block
+      const PetscInt g = dofs.globalBlock()[block];
+      if (g < dofs.ownedBegin() || g >= dofs.ownedEnd()) return 0.0;
+      return a[(g - dofs.ownedBegin()) * D] + (coordinate ? m.initialCoordinates()[block * D] : 0.0);
+    };
+    for (size_t r = 0; r < m.reels().size(); ++r) {
+      const model::Body& b = m.bodies()[m.reelBody(static_cast<int>(r))];
+      const int k = b.info().materialBlock(), blk = m.reelBlock(static_cast<int>(r));
+      values[4 * r] = read(x, blk, true);
+      values[4 * r + 1] = read(v, blk, false);
+      values[4 * r + 2] = read(x, b.block(0, k), true);
+      values[4 * r + 3] = read(x, b.block(b.elements, k), true);
+    }
+    PetscCall(VecRestoreArrayRead(X, &x));
+    PetscCall(VecRestoreArrayRead(V, &v));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, _comm));
     for (size_t r = 0; r < m.reels().size(); ++r) {
       const model::ReelDesc& d = m.reels()[r];
       const model::Body& b = m.bodies()[m.reelBody(static_cast<int>(r))];
-      const int k = b.info().materialBlock(), dof = m.reelBlock(static_cast<int>(r)) * D;
-      const int p0 = b.block(0, k) * D, pN = b.block(b.elements, k) * D;
-      const double phi = x.empty() ? 0.0 : x[dof];
-      const double length = x.empty() ? 0.0 : x[pN] - x[p0];
+      const double phi = values[4 * r], length = values[4 * r + 3] - values[4 * r + 2];
       const std::string stem = "reel_" + d.name + "_";
       PetscCallCXX(_writer->writeScalarSeries(stem + "angle", phi));
-      PetscCallCXX(_writer->writeScalarSeries(stem + "speed", v.empty() ? 0.0 : v[dof]));
+      PetscCallCXX(_writer->writeScalarSeries(stem + "speed", values[4 * r + 1]));
       PetscCallCXX(_writer->writeScalarSeries(stem + "content", d.content - d.radius * phi));
       PetscCallCXX(_writer->writeScalarSeries(stem + "length", length));
       // a reel that ran empty pays out material it does not have, one that winds the body in
       // shrinks its elements to nothing: stop there (the run ends with this message, its output kept)
-      int stop = 0;
-      if (!x.empty() && _reelStop.empty()) stop = d.content - d.radius * phi < 0.0 ? 1 : length < 1e-3 * b.length ? 2 : 0;
-      MPI_Bcast(&stop, 1, MPI_INT, 0, _comm);
+      const int stop = !_reelStop.empty() ? 0 : d.content - d.radius * phi < 0.0 ? 1 : length < 1e-3 * b.length ? 2 : 0;
       if (stop == 1)
         _reelStop = "reel '" + d.name + "' ran empty: its content (" + fmt("%g", d.content) +
                     " m) is paid out; give it more 'content' or stop the payout (scene " + _scene.file + ")";

@@ -56,15 +56,10 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   // potential of the body alone (material enters and leaves it): _fext keeps the constant loads,
   // and the energy balance counts the others' work v . Q(q) (powers)
   _configurationLoads = assembler.hasConfigurationLoads();
-  if (_configurationLoads) {
-    Vec zero, Q0;
-    PetscCallAbort(comm, VecDuplicate(_fext, &zero));
-    PetscCallAbort(comm, VecDuplicate(_fext, &Q0));
-    PetscCallAbort(comm, VecSet(zero, 0.0));
-    PetscCallAbort(comm, assembler.configurationLoads(zero, Q0));
-    PetscCallAbort(comm, VecAXPY(_fext, -1.0, Q0));
-    PetscCallAbort(comm, VecDestroy(&zero));
-    PetscCallAbort(comm, VecDestroy(&Q0));
+  if (_configurationLoads) {  // _fext -= Q(q0) (the work vectors: u = 0 in _w1, Q(q0) in _w2)
+    PetscCallAbort(comm, VecSet(_w1, 0.0));
+    PetscCallAbort(comm, assembler.configurationLoads(_w1, _w2));
+    PetscCallAbort(comm, VecAXPY(_fext, -1.0, _w2));
   }
   PetscCallAbort(comm, assembler.supportMask(_supported));
   {  // and 1e-12 |f| |q0|: the potential -f.u of the constant loads has the round-off eps |f| |q0|

@@ -64,16 +64,24 @@ PetscErrorCode dropZeros(Mat M, Mat* op) {
   PetscFunctionBeginUser;
   PetscCall(MatGetOwnershipRange(M, &rstart, &rend));
   PetscCall(MatGetOwnershipRangeColumn(M, &cstart, &cend));
-  std::vector<PetscInt> own(rend - rstart, 0), other(rend - rstart, 0);
+  ScalarRows rows;  // the nonzeros by row (global columns), read once
+  rows.cols.resize(rend - rstart);
+  rows.vals.resize(rend - rstart);
+  rows.ownCount.assign(rend - rstart, 0);
+  rows.otherCount.assign(rend - rstart, 0);
   double counts[2] = {0.0, 0.0};  // nonzero, stored
   for (PetscInt r = rstart; r < rend; ++r) {
     PetscInt n;
     const PetscInt* cols;
     const PetscScalar* vals;
     PetscCall(MatGetRow(M, r, &n, &cols, &vals));
-    for (PetscInt k = 0; k < n; ++k)
-      if (vals[k] != 0.0) ++(cols[k] >= cstart && cols[k] < cend ? own : other)[r - rstart];
-    counts[0] += own[r - rstart] + other[r - rstart];
+    for (PetscInt k = 0; k < n; ++k) {
+      if (vals[k] == 0.0) continue;
+      rows.cols[r - rstart].push_back(cols[k]);
+      rows.vals[r - rstart].push_back(vals[k]);
+      ++(cols[k] >= cstart && cols[k] < cend ? rows.ownCount : rows.otherCount)[r - rstart];
+    }
+    counts[0] += static_cast<double>(rows.cols[r - rstart].size());
     counts[1] += n;
     PetscCall(MatRestoreRow(M, r, &n, &cols, &vals));
   }
@@ -87,17 +95,11 @@ PetscErrorCode dropZeros(Mat M, Mat* op) {
   PetscCall(MatCreate(comm, &A));
   PetscCall(MatSetSizes(A, rend - rstart, cend - cstart, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCall(MatSetType(A, MATAIJ));
-  PetscCall(MatSeqAIJSetPreallocation(A, 0, own.data()));
-  PetscCall(MatMPIAIJSetPreallocation(A, 0, own.data(), 0, other.data()));
-  for (PetscInt r = rstart; r < rend; ++r) {
-    PetscInt n;
-    const PetscInt* cols;
-    const PetscScalar* vals;
-    PetscCall(MatGetRow(M, r, &n, &cols, &vals));
-    for (PetscInt k = 0; k < n; ++k)
-      if (vals[k] != 0.0) PetscCall(MatSetValue(A, r, cols[k], vals[k], INSERT_VALUES));
-    PetscCall(MatRestoreRow(M, r, &n, &cols, &vals));
-  }
+  PetscCall(MatSeqAIJSetPreallocation(A, 0, rows.ownCount.data()));
+  PetscCall(MatMPIAIJSetPreallocation(A, 0, rows.ownCount.data(), 0, rows.otherCount.data()));
+  for (PetscInt r = rstart; r < rend; ++r)
+    PetscCall(MatSetValues(A, 1, &r, static_cast<PetscInt>(rows.cols[r - rstart].size()), rows.cols[r - rstart].data(),
+                           rows.vals[r - rstart].data(), INSERT_VALUES));
   PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   *op = A;

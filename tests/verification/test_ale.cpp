@@ -21,6 +21,7 @@
 #include "strand/elements/ElementRegistry.hpp"
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/ModalSolver.hpp"
+#include "support/HangingTether.hpp"
 #include "support/MovingBeam.hpp"
 #include "support/MovingString.hpp"
 #include "support/Scenes.hpp"
@@ -55,30 +56,14 @@ TEST(AleCable, AxiallyMovingStringVibratesAtTheWickertMoteFrequency) {
 // below it equally spaced in material each (only node 0's p is prescribed then, spacing joints
 // spread the payout).
 static void payoutUnderGravity(int dim, bool ring = false) {
-  const double L0 = 10.0, r = 5e-3, rho = 7850.0, E = 2e11, m = 5.0, g = 9.81, speed = 0.2, ramp = 2.0;
-  const double rhoA = rho * M_PI * r * r;
-  model::SceneDescription sc;
-  sc.file = "(test)";
-  sc.dimension = dim;
-  sc.analysis = model::Analysis::Dynamic;
-  model::BodyDesc b;
-  b.name = "tether";
-  b.kind = elements::findKind(dim == 2 ? "AleCable2d" : "AleCable3d");
-  b.elements = 20;
-  b.geometry.kind = model::GeometryKind::Line;
-  b.geometry.start = {0, 0, 0};
-  b.geometry.end = {0, -L0, 0};
-  b.section.numbers = {{"E", E}, {"A", M_PI * r * r}, {"I", M_PI * std::pow(r, 4) / 4.0}, {"rho", rho}};
+  const double L0 = kL0, m = kBlock, g = kG, speed = 0.2, ramp = 2.0;
+  const double rhoA = strand::testing::rhoA();
+  model::SceneDescription sc = hangingTether(dim);
+  model::BodyDesc& b = sc.bodies[0];
   b.hasPayout = true;
   b.payout.kind = model::TimeFunction::Kind::SpinUp;
   b.payout.omega = speed;
   b.payout.duration = ramp;
-  sc.bodies.push_back(b);
-  model::SupportDesc top;
-  top.at.body = "tether";
-  top.at.node = 0;
-  top.type = model::SupportType::Pinned;
-  sc.supports.push_back(top);
   const int ringNode = 10;
   if (ring) {
     model::SupportDesc s;
@@ -87,30 +72,6 @@ static void payoutUnderGravity(int dim, bool ring = false) {
     s.type = model::SupportType::Sliding;
     sc.supports.push_back(s);
   }
-  model::RigidBodyDesc block;
-  block.name = "block";
-  block.mass = m;
-  block.inertia = 0.01;
-  block.principalInertia = {0.01, 0.01, 0.01};
-  block.position = {0, -L0, 0};
-  sc.rigidBodies.push_back(block);
-  model::JointDesc pin;
-  pin.type = model::JointType::Pin;
-  pin.a.kind = model::JointEndDesc::Kind::CableNode;
-  pin.a.body = "tether";
-  pin.a.node = -1;
-  pin.b.kind = model::JointEndDesc::Kind::RigidPoint;
-  pin.b.body = "block";
-  sc.joints.push_back(pin);
-  sc.loads.gravity = {0, -g, 0};
-  sc.loads.timed = true;
-  sc.loads.function.kind = model::TimeFunction::Kind::Ramp;
-  sc.loads.function.start = 0.0;
-  sc.loads.function.end = 1.0;
-  sc.loads.function.value = 1.0;
-  sc.dynamics.integrator = model::Integrator::GeneralizedAlpha;
-  sc.dynamics.rhoInf = 0.5;
-  sc.dynamics.dt = 2e-3;
   sc.dynamics.tEnd = 10.0;
   solvers::Problem p(PETSC_COMM_WORLD, sc);
   Vec X, V, F;
