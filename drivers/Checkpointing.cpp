@@ -69,6 +69,10 @@ void writeDynamicsCheckpoint(MPI_Comm comm, const model::SceneDescription& scene
   for (const auto& [name, v] : vecs) PetscCallAbort(comm, problem.assembler().toModelOrder(v, c.vectors[name]));
   // ABM4's history: f_k = (u', v') per entry; fixed-step BDF's: y_k = (u, v); each half in model numbering
   if (s.newtonStart >= 0) c.scalars["newton_start"] = s.newtonStart;  // generalized-alpha's Newton start
+  if (s.stepCuts > 0) {  // generalized-alpha mid-way back from a step cut: the next step is nominal / 2^cuts
+    c.scalars["step_cuts"] = s.stepCuts;
+    c.scalars["nominal_step"] = s.nominalStep;
+  }
   if (problem.assembler().hasContactHistory()) {  // the bristle law's deflections: (body, element, pulley, point, z)
     c.scalars["contact_time"] = s.contactTime;
     c.vectors["contact_history"] = s.contactHistory;
@@ -131,11 +135,15 @@ io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& sce
     fail("the checkpoint is at t = " + fmt("%g", time) + " s, not before dynamics.t_end = " + fmt("%g", d.tEnd) +
          " s: nothing to continue");
   if (!wholeIn(step, 0.0, INT_MAX)) fail("the checkpoint's step " + fmt("%g", step) + " is not a step number 0.." + std::to_string(INT_MAX));
-  // fixed steps: step n ends at n dt (an adaptive run's steps have no fixed length)
-  if (!d.adaptive && std::fabs(step - time / d.dt) > 0.5)
+  // fixed steps: step n ends at n dt (an adaptive run's steps have no fixed length, nor have those
+  // of a run whose Newton failures cut some)
+  if (!d.adaptive && d.stepCuts == 0 && std::fabs(step - time / d.dt) > 0.5)
     fail("step " + fmt("%.0f", step) + " and t = " + fmt("%.17g", time) + " s do not agree with dt " + fmt("%g", d.dt) +
          " (step n ends at n dt)");
   if (sc.count("newton_start") && !wholeIn(sc.at("newton_start"), 0.0, 2.0)) fail("newton_start must be 0, 1 or 2");
+  if (sc.count("step_cuts") && (!wholeIn(sc.at("step_cuts"), 1.0, 10.0) || !sc.count("nominal_step") ||
+                                !(sc.at("nominal_step") > 0.0)))
+    fail("step_cuts must be 1..10 with a positive nominal_step");
   if (sc.count("bdf_order") && !wholeIn(sc.at("bdf_order"), 1.0, 5.0)) fail("bdf_order must be 1..5");
   if (sc.count("bdf_steps") && !wholeIn(sc.at("bdf_steps"), 0.0, INT_MAX)) fail("bdf_steps must be a step count");
   for (const auto& [key, value] : sc)
@@ -232,6 +240,10 @@ int resumeDynamics(MPI_Comm comm, const io::CheckpointData& data, const std::str
     s.a = a;
   }
   if (sc.count("newton_start")) s.newtonStart = static_cast<int>(sc.at("newton_start"));
+  if (sc.count("step_cuts")) {
+    s.stepCuts = static_cast<int>(sc.at("step_cuts"));
+    s.nominalStep = sc.at("nominal_step");
+  }
   const int historyCount = sc.count("history_count") ? static_cast<int>(sc.at("history_count")) : 0;
   if (historyCount > 0 && dyn.stateSpace()) {
     s.historyCount = historyCount;

@@ -90,6 +90,7 @@ PulleyContacts::PulleyContacts(const model::Model& model, const model::DofMap& d
       b.history = _z.size();
       _z.resize(_z.size() + b.elements.size() * set.pulleys.size() * b.weight.size(), 0.0);
       _state.resize(_z.size(), 0);  // none held: the first solve lets the law decide
+      _changed.resize(_z.size(), 0);
       _hasHistory |= set.law.friction == contact::FrictionLaw::Bristle;
       if (!b.elements.empty()) _bodies.push_back(std::move(b));
     }
@@ -419,12 +420,16 @@ void PulleyContacts::commit(const double* x, const double* v, double t) {
 
 int PulleyContacts::settle(const double* x, const double* v, double t, bool release) {
   if (!_hasHistory) return 0;
-  if (release) {
-    std::fill(_state.begin(), _state.end(), 0);
+  if (release) {  // the law decides at the points that changed at the last settle (all if none did)
+    const bool any = std::find(_changed.begin(), _changed.end(), 1) != _changed.end();
+    for (size_t h = 0; h < _state.size(); ++h)
+      if (!any || _changed[h]) _state[h] = 0;
+    std::fill(_changed.begin(), _changed.end(), 0);
     return 0;
   }
   const std::vector<contact::PulleyState> pulleys = pulleysAt(t, x, v);
   std::vector<signed char> state(_state.size(), 0);  // off contact: as the law decides when it lands
+  std::fill(_changed.begin(), _changed.end(), 0);
   int changed = 0;
   forEachNearPoint(x, v, pulleys, [&](const LocalBody&, const model::PulleyContactSet& set, int, int, int p,
                                       size_t h, const double* rg, const double* vg) {
@@ -439,8 +444,12 @@ int PulleyContacts::settle(const double* x, const double* v, double t, bool rele
     // a point whose held state's force is within kSettleTolerance mu p of the law's keeps it: at
     // the cone's edge the two states give the same solution, and flipping it would cycle
     const double held = _state[h] == 1 ? c.trial : (_state[h] == 2 ? limit : -limit);
-    if (std::abs(held - c.friction) <= kSettleTolerance * limit) state[h] = _state[h];
-    else ++changed;
+    if (std::abs(held - c.friction) <= kSettleTolerance * limit) {
+      state[h] = _state[h];
+    } else {
+      _changed[h] = 1;
+      ++changed;
+    }
   });
   _state.swap(state);
   return changed;

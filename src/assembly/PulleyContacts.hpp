@@ -68,7 +68,8 @@ public:
   // while Newton solves; settle() compares the states the law takes at the converged (x, v, t) with
   // the held ones, holds the new ones and returns how many changed (a point that had none held, or
   // that left contact, counts as agreeing). Before the first settle none is held. release: hold
-  // none (the law decides within Newton), returns 0.
+  // none at the points that changed at the last settle (all when none did: after a failed
+  // solve), so that the law decides there within Newton; returns 0.
   int settle(const double* x, const double* v, double t, bool release);
   // The history as (body, element, pulley, point) -> z and t_n, for checkpoints; restore() puts
   // back what history() wrote (on any rank count: each rank takes its own elements' points).
@@ -119,6 +120,7 @@ private:
   bool _hasHistory = false;             // some contact uses the bristle law
   std::vector<double> _z;               // committed deflections, per slot
   std::vector<signed char> _state;      // held stick/slip states, per slot (BristleHistory::state)
+  std::vector<char> _changed;           // per slot: its state changed at the last settle
   double _tn = 0.0;                     // the time they belong to
   // Slot h's history at time t (null without the bristle law).
   const contact::BristleHistory* historyAt(size_t h, double t, contact::BristleHistory* buf) const;

@@ -1082,11 +1082,16 @@ private:
 
   void readDynamics(const Field& f) {
     f.expectMap({"integrator", "rho_inf", "hht_alpha", "bdf_order", "adaptive", "rtol", "atol", "constraint_form", "dt",
-                 "t_end", "output_every", "dt_out"});
+                 "t_end", "output_every", "dt_out", "step_cuts"});
     model::DynamicsDesc& d = scene_.dynamics;
     d.mark = f.mark();
     const Field integrator = f.child("integrator");
     if (integrator.present()) d.integrator = pick(integrator, "integrator", kIntegrators).value;
+    if (const Field c = f.child("step_cuts"); c.present()) {
+      if (model::isFirstOrder(d.integrator))
+        c.fail("only used by integrator: generalized_alpha, newmark or hht (bdf cuts its step with adaptive: true)");
+      d.stepCuts = requireIntInRange(c, 0, 10);
+    }
     if (const Field r = f.child("rho_inf"); r.present()) {
       if (d.integrator != model::Integrator::GeneralizedAlpha) r.fail("only used by integrator: generalized_alpha");
       d.rhoInf = r.number();

@@ -99,6 +99,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   } else {
     PetscCallAbort(comm, TSSetType(_ts, kTsGeneralizedAlpha));
     PetscCallAbort(comm, GeneralizedAlphaSetNewtonRetry(_ts, retryNewton, this));
+    PetscCallAbort(comm, GeneralizedAlphaSetStepCuts(_ts, desc.stepCuts));
     if (_asm.hasContactHistory()) PetscCallAbort(comm, GeneralizedAlphaSetSettle(_ts, settleContact, this));
     PetscCallAbort(comm, TSSetI2Function(_ts, nullptr, formFunction, this));
     PetscCallAbort(comm, TSSetI2Jacobian(_ts, _J, _J, formJacobian, this));
@@ -713,6 +714,7 @@ PetscErrorCode Dynamics::run(Vec X, Vec V, const StepCallback& onStep, std::stri
         PetscCall(GeneralizedAlphaSetState(_ts, _resume.A, _resume.a));
         // the start the run had chosen (older checkpoints: the option's, checked again)
         if (_resume.newtonStart >= 0) PetscCall(GeneralizedAlphaSetPredictor(_ts, _resume.newtonStart));
+        PetscCall(GeneralizedAlphaResumeStepCuts(_ts, _resume.stepCuts, _resume.nominalStep));  // mid-way back from a cut
       } else {
         Vec a;
         PetscCall(VecDuplicate(_a0, &a));

@@ -32,6 +32,9 @@ PetscErrorCode Dynamics::saveState(ResumeState* s) {
     PetscCall(GeneralizedAlphaGetState(_ts, &s->A, &s->a));
     PetscCall(GeneralizedAlphaGetPredictor(_ts, &which, nullptr));
     s->newtonStart = static_cast<int>(which);
+    PetscInt cuts;
+    PetscCall(GeneralizedAlphaGetStepCuts(_ts, &cuts, &s->nominalStep));
+    s->stepCuts = static_cast<int>(cuts);
   }
   s->historyCount = 0;
   PetscBool abm = PETSC_FALSE;

@@ -40,6 +40,9 @@ struct AlphaData {
   void* retryCtx = nullptr;
   SettleFn settle = nullptr;
   void* settleCtx = nullptr;
+  int maxCuts = 0;             // GeneralizedAlphaSetStepCuts: halvings of the step a failed Newton may take
+  int cuts = 0;                // the step is nominal / 2^cuts
+  PetscReal nominal = 0.0;     // the step before the first cut
 };
 
 AlphaData* dataOf(TS ts) { return static_cast<AlphaData*>(ts->data); }
@@ -249,7 +252,8 @@ PetscErrorCode step(TS ts) {
       d->checkPredictor = true;
     }
     if (d->checkPredictor && fresh) PetscCall(choosePredictor(ts, X1, h));
-    bool released = false;  // held states (SettleFn) released after a failure
+    bool released = false;    // held states (SettleFn) released after a failure
+    bool retriedAll = false;  // Newton failed after every retry at this step size
     for (PetscBool again = PETSC_TRUE; again;) {
       again = PETSC_FALSE;
       // predictor: constant acceleration (or velocity, or displacement)
@@ -264,7 +268,9 @@ PetscErrorCode step(TS ts) {
       for (int round = 0; reason >= 0 && d->settle; ++round) {
         PetscInt changed;
         PetscCall(stageVectors(ts, X1));  // V1 of X1
-        PetscCall(d->settle(d->settleCtx, d->stageTime, X1, d->V1, round >= kSettleRounds ? PETSC_TRUE : PETSC_FALSE,
+        // round kSettleRounds: the law decides at the points still changing; after that solve the
+        // states it found are held for the next step
+        PetscCall(d->settle(d->settleCtx, d->stageTime, X1, d->V1, round == kSettleRounds ? PETSC_TRUE : PETSC_FALSE,
                             &changed));
         if (round > kSettleRounds || (!changed && round < kSettleRounds)) break;
         PetscCall(solveStage(ts, X1, &reason));
@@ -289,6 +295,21 @@ PetscErrorCode step(TS ts) {
         again = PETSC_TRUE;
       }
       if (again) ts->reject++;
+      else retriedAll = true;
+    }
+    if (retriedAll && d->cuts < d->maxCuts) {
+      // Newton failed at this step size after every retry: halve it and try again from X0 (the
+      // contact states as after a failure: released); later steps double back to the nominal one
+      if (d->cuts == 0) d->nominal = h;
+      ++d->cuts;
+      ts->time_step = 0.5 * h;
+      PetscCall(PetscInfo(ts, "Newton failed at t = %g with every retry; the step cut to %g\n",
+                          static_cast<double>(ts->ptime + h), static_cast<double>(ts->time_step)));
+      PetscCall(VecCopy(d->X0, ts->vec_sol));
+      fresh = PETSC_TRUE;
+      retriedAll = false;
+      ts->reject++;
+      continue;
     }
     PetscCall(TSAdaptCheckStage(ts->adapt, ts, ts->ptime + h, X1, &accept));
     // the next step (fixed unless an adaptor is chosen; stretched or cut to land on the final time);
@@ -307,6 +328,10 @@ PetscErrorCode step(TS ts) {
       std::swap(d->a, d->a1);
       ts->ptime += h;
       ts->time_step = next;
+      if (d->cuts > 0) {  // after a cut: back towards the nominal step, doubling per accepted step
+        --d->cuts;
+        ts->time_step = d->cuts == 0 ? d->nominal : 2.0 * h;
+      }
       break;
     }
     PetscCall(VecCopy(d->X0, ts->vec_sol));  // reject: back to the start of the step
@@ -558,6 +583,31 @@ PetscErrorCode GeneralizedAlphaSetSettle(TS ts, SettleFn settle, void* ctx) {
   PetscCall(checkType(ts));
   dataOf(ts)->settle = settle;
   dataOf(ts)->settleCtx = ctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaSetStepCuts(TS ts, PetscInt maxCuts) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  dataOf(ts)->maxCuts = static_cast<int>(maxCuts);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaGetStepCuts(TS ts, PetscInt* cuts, PetscReal* nominal) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  *cuts = dataOf(ts)->cuts;
+  *nominal = dataOf(ts)->nominal;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GeneralizedAlphaResumeStepCuts(TS ts, PetscInt cuts, PetscReal nominal) {
+  PetscFunctionBeginUser;
+  PetscCall(checkType(ts));
+  if (cuts <= 0) PetscFunctionReturn(0);
+  dataOf(ts)->cuts = static_cast<int>(cuts);
+  dataOf(ts)->nominal = nominal;
+  PetscCall(TSSetTimeStep(ts, std::ldexp(nominal, -static_cast<int>(cuts))));
   PetscFunctionReturn(0);
 }
 

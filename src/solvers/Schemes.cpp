@@ -36,7 +36,7 @@ PetscErrorCode configureTimeStepping(TS ts, const model::DynamicsDesc& desc) {
   const bool adaptive = adaptiveBdf(desc);
   PetscCall(TSSetTimeStep(ts, desc.dt));
   PetscCall(TSSetMaxTime(ts, desc.tEnd));
-  PetscCall(TSSetMaxSteps(ts, adaptive ? PETSC_MAX_INT - 1
+  PetscCall(TSSetMaxSteps(ts, adaptive || desc.stepCuts > 0 ? PETSC_MAX_INT - 1
                                        : static_cast<PetscInt>(std::ceil(desc.tEnd / desc.dt - 1e-9)) + 1));
   PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   // fixed step: the first Newton failure ends the run with a message instead of a silent cut;

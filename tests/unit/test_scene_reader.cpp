@@ -749,6 +749,12 @@ TEST(SceneReader, DynamicsSection) {
                         "only used with integrator: bdf and adaptive: true"));
   EXPECT_TRUE(failsWith(edit(dyn, "integrator: generalized_alpha, rho_inf: 0.8", "integrator: rk4, adaptive: true"), 13,
                         "dynamics.adaptive", "only used by integrator: bdf"));
+  // step cuts (the second-order integrators' remedy for a failed Newton)
+  EXPECT_EQ(parseScene(edit(dyn, "dt: 1e-3", "dt: 1e-3, step_cuts: 3"), "s.yaml").dynamics.stepCuts, 3);
+  EXPECT_EQ(s.dynamics.stepCuts, 0);
+  EXPECT_TRUE(failsWith(edit(dyn, "dt: 1e-3", "dt: 1e-3, step_cuts: 11"), 13, "dynamics.step_cuts", "must be 0..10"));
+  EXPECT_TRUE(failsWith(edit(bdf, "integrator: bdf", "integrator: bdf, step_cuts: 2"), 13, "dynamics.step_cuts",
+                        "only used by integrator: generalized_alpha, newmark or hht"));
   EXPECT_TRUE(failsWith(edit(dyn, "dt: 1e-3", "dt: 3"), 13, "dynamics.dt", "larger than t_end"));
   EXPECT_TRUE(failsWith(edit(dyn, "dt: 1e-3", "dt: -1"), 13, "dynamics.dt", "must be positive"));
 }

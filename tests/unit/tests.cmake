@@ -14,6 +14,7 @@ strand_test(NAME unit_time_function SOURCES unit/test_time_function.cpp LABELS u
 strand_test(NAME unit_constraint SOURCES unit/test_constraint.cpp LABELS unit)
 strand_test(NAME unit_pulley_contact SOURCES unit/test_pulley_contact.cpp LABELS unit)
 strand_test(NAME unit_state_space SOURCES unit/test_state_space.cpp LABELS unit NPROCS 1 2)
+strand_test(NAME unit_step_cuts SOURCES unit/test_step_cuts.cpp LABELS unit)
 strand_test(NAME unit_hub_beam SOURCES unit/test_hub_beam.cpp LABELS unit)
 strand_test(NAME unit_interface_schur SOURCES unit/test_interface_schur.cpp LABELS unit NPROCS 1 2 3)
 strand_test(NAME unit_banded_block_lu SOURCES unit/test_banded_block_lu.cpp LABELS unit)

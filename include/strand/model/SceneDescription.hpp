@@ -273,6 +273,7 @@ struct DynamicsDesc {
   double tEnd = 0.0;      // final time [s] (required)
   int outputEvery = 1;    // write a frame every k steps (and the last step)
   double dtOut = 0.0;     // > 0: a frame at the first step at or after each multiple of dt_out instead
+  int stepCuts = 0;       // second-order integrators: halvings of dt a failed Newton may take (GeneralizedAlphaSetStepCuts)
   SourceMark mark;
 };
 

@@ -87,6 +87,8 @@ struct ResumeState {
   std::vector<double> historyTimes;  // fixed-step BDF: the times of its states (most recent first)
   int bdfOrder = 1, bdfSteps = 0;    // fixed-step BDF: current order, steps since its start
   int newtonStart = -1;  // generalized-alpha: the Newton start in use (GeneralizedAlphaGetPredictor); -1: none
+  int stepCuts = 0;          // generalized-alpha: step cuts in force (GeneralizedAlphaGetStepCuts) ...
+  double nominalStep = 0.0;  // ... and the step they cut
   std::vector<double> contactHistory;  // the bristle law's deflections (Assembler::contactHistory)
   double contactTime = 0.0;            // ... and the time they belong to
 };

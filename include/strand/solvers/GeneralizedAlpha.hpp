@@ -101,13 +101,22 @@ PetscErrorCode GeneralizedAlphaGetPredictorOffset(TS ts, Vec* offset);
 // failure goes to TSAdaptCheckStage (the TS retries anyway after a failure from a predictor other
 // than X0).
 using RetryFn = PetscErrorCode (*)(void* ctx, PetscBool* again);
+// Step cuts: when Newton fails at a step after every retry, the step is halved (at most maxCuts
+// times in a row, so down to dt / 2^maxCuts) and tried again from X0; each accepted step after a
+// cut doubles it back until it is the nominal one. 0 (the default): the failure ends the run.
 PetscErrorCode GeneralizedAlphaSetNewtonRetry(TS ts, RetryFn retry, void* ctx);
+PetscErrorCode GeneralizedAlphaSetStepCuts(TS ts, PetscInt maxCuts);
+// The cuts in force (the next step is nominal / 2^cuts) and the nominal step, for checkpoints;
+// Resume puts them back (and the next step) in a run that continues from one.
+PetscErrorCode GeneralizedAlphaGetStepCuts(TS ts, PetscInt* cuts, PetscReal* nominal);
+PetscErrorCode GeneralizedAlphaResumeStepCuts(TS ts, PetscInt cuts, PetscReal nominal);
 
 // A residual with states held fixed while Newton solves (the stick/slip states of contact points,
 // docs/contact.md): after each converged solve, settle(ctx, t, X1, V1, release, &changed) compares
 // them with those of the solution and holds the new ones; while any changed, Newton solves again
-// from X1. After kSettleRounds rounds it is called with release = true (hold none: the law decides
-// within Newton) and Newton solves once more; and when a solve fails, the step is retried from X0
+// from X1. After kSettleRounds rounds it is called with release = true (hold none where states
+// still changed: the law decides there within Newton), Newton solves once more, and settle holds
+// the states of that solution for the next step; when a solve fails, the step is retried from X0
 // with the states released.
 using SettleFn = PetscErrorCode (*)(void* ctx, PetscReal t, Vec X, Vec V, PetscBool release, PetscInt* changed);
 PetscErrorCode GeneralizedAlphaSetSettle(TS ts, SettleFn settle, void* ctx);
