@@ -31,7 +31,8 @@ struct Case {
   int elements;
   double dt;
   int points;
-  const char* law;  // "bristle", "coulomb" or "creep_rate" (v_s = 0.1 m/s: at 0.03 the creep-rate law fails at 1.37 s)
+  const char* law;  // "bristle" (k_t 1e8), "bristle_1e9", "coulomb" or "creep_rate" (v_s = 0.1 m/s: at 0.03 the
+                    // creep-rate law fails at 1.37 s)
   const char* integrator;  // "alpha" (generalized-alpha rho_inf 0.8) or "bdf2" (not with a free pulley yet)
 };
 
@@ -48,7 +49,7 @@ Run run(const Case& c) {
   r.c = c;
   r.elements = c.elements;
   r.dt = c.dt;
-  model::SceneDescription sc = twoPulleyDrive(c.elements);
+  model::SceneDescription sc = twoPulleyDrive(c.elements, std::string(c.law) == "bristle_1e9" ? 1e9 : 1e8);
   sc.contacts[0].points = c.points;
   if (std::string(c.law) == "coulomb" || std::string(c.law) == "creep_rate") {
     sc.contacts[0].law.friction =
@@ -63,6 +64,8 @@ Run run(const Case& c) {
   if (std::string(c.integrator) == "bdf2") {
     d.integrator = model::Integrator::Bdf;
     d.bdfOrder = 2;
+  } else {
+    d.stepCuts = 3;  // the stiff bristle law fails Newton in a few steps (docs/contact.md)
   }
   d.dt = c.dt;
   d.tEnd = 2.45;
@@ -91,8 +94,8 @@ Run run(const Case& c) {
   PetscCallAbort(PETSC_COMM_WORLD, p.assembler().gatherToRoot(X, q));
   const model::Body& b = p.model().bodies()[0];
   if (!q.empty())
-    for (int k = 0; k < 2; ++k)  // the upper span (k = 1, N/2) is the tight one
-      r.T[1 - k] = cableTension(8000.0, nodeStretch(b, q, k * b.elements / 2));
+    for (int k = 0; k < 2; ++k)  // at the middles of the spans; the upper one (k = 1) is the tight one
+      r.T[1 - k] = cableTension(8000.0, nodeStretch(b, q, nodeNearest(b, q, 0.05 * std::acos(-1.0), k ? 0.1 : -0.1)));
   VecDestroy(&X);
   VecDestroy(&V);
   return r;
@@ -107,7 +110,8 @@ int main(int argc, char** argv) {
       {25, 2e-4, 4, "bristle", "alpha"},  {50, 2e-4, 4, "bristle", "alpha"},  {100, 2e-4, 4, "bristle", "alpha"},
       {200, 2e-4, 4, "bristle", "alpha"}, {50, 2e-4, 2, "bristle", "alpha"},  {100, 2e-4, 2, "bristle", "alpha"},
       {50, 1e-4, 4, "bristle", "alpha"},  {100, 1e-4, 4, "bristle", "alpha"}, {100, 2e-4, 4, "coulomb", "alpha"},
-      {100, 2e-4, 4, "creep_rate", "alpha"}, {50, 2e-4, 4, "bristle", "bdf2"}, {100, 2e-4, 4, "bristle", "bdf2"},
+      {100, 2e-4, 4, "creep_rate", "alpha"}, {100, 2e-4, 4, "bristle_1e9", "alpha"},
+      {50, 2e-4, 4, "bristle", "bdf2"}, {100, 2e-4, 4, "bristle", "bdf2"},
       {400, 1e-4, 4, "bristle", "alpha"}};
   std::vector<Run> runs;
   for (const Case& c : cases) runs.push_back(run(c));

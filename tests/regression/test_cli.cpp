@@ -853,7 +853,7 @@ for path in sys.argv[1:]:
 TEST(Cli, RestartCarriesTheBristleFrictionHistory) {
   const fs::path dir = scratchDir("bristle-restart");
   std::string scene = readText(sourceDir() + "/meshes/two-pulley-drive.yaml");
-  scene.replace(scene.find("t_end: 2.45, output_every: 50"), 29, "t_end: 0.4, output_every: 100");
+  scene.replace(scene.find("t_end: 2.45, output_every: 50"), 29, "t_end: 0.4, output_every: 100");  // (cut at step 1)
   writeFile(dir / "d.yaml", scene);
   const std::string run = strandBinary() + " run " + (dir / "d.yaml").string();
   auto full = runCommand(run + " -o " + (dir / "full.h5").string());

@@ -74,6 +74,19 @@ inline double nodeStretch(const model::Body& b, const std::vector<double>& q, in
   return std::hypot(q[2 * blk], q[2 * blk + 1]) / b.blockScale(1);
 }
 
+// The node of body b nearest (x, y) in the configuration q (absolute coordinates, model order). A
+// belt's material nodes travel: the one at a span's middle changes as the belt runs.
+inline int nodeNearest(const model::Body& b, const std::vector<double>& q, double x, double y) {
+  int best = 0;
+  double dmin = 1e300;
+  for (int n = 0; n < b.elements; ++n) {  // a closed belt's last node is its first
+    const int blk = b.block(n, 0);
+    const double d = std::hypot(q[2 * blk] / b.blockScale(0) - x, q[2 * blk + 1] / b.blockScale(0) - y);
+    if (d < dmin) dmin = d, best = n;
+  }
+  return best;
+}
+
 // Seconds spent so far in the contact's log event (Strand:Asm:Contact), on this rank.
 inline double contactSeconds() {
   PetscLogEvent ev;
@@ -89,7 +102,7 @@ inline double contactSeconds() {
 // over 0.05 .. 0.6 s) and "b" (J = 0.25 kg m^2, damping 2 N m s, load torque 25 (1 - cos(2 pi (t - 1)))
 // / 2 N m over 1 .. 1.5 s, then 25 N m) of radius 0.09995 m (the belt's centerline at 0.1 m), 0.1 pi m
 // apart; bristle friction mu = 0.5 with stiffness kt, normal penalty 1e8 N/m^2; gravity 9.81 m/s^2.
-// meshes/two-pulley-drive.yaml is the same scene.
+// meshes/two-pulley-drive.yaml is the same scene with kt = 1e9 (and dynamics.step_cuts: 3).
 inline model::SceneDescription twoPulleyDrive(int elements, double kt = 1e8) {
   BeltLoop spec;
   spec.radius = 0.1;  // the wrap: the belt's centerline
