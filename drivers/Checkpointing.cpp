@@ -135,15 +135,21 @@ io::CheckpointData readRestart(MPI_Comm comm, const model::SceneDescription& sce
     fail("the checkpoint is at t = " + fmt("%g", time) + " s, not before dynamics.t_end = " + fmt("%g", d.tEnd) +
          " s: nothing to continue");
   if (!wholeIn(step, 0.0, INT_MAX)) fail("the checkpoint's step " + fmt("%g", step) + " is not a step number 0.." + std::to_string(INT_MAX));
-  // fixed steps: step n ends at n dt (an adaptive run's steps have no fixed length, nor have those
-  // of a run whose Newton failures cut some)
+  // fixed steps: step n ends at n dt (an adaptive run's steps have no fixed length); step cuts only
+  // add steps
   if (!d.adaptive && d.stepCuts == 0 && std::fabs(step - time / d.dt) > 0.5)
     fail("step " + fmt("%.0f", step) + " and t = " + fmt("%.17g", time) + " s do not agree with dt " + fmt("%g", d.dt) +
-         " (step n ends at n dt)");
+         " (step n ends at n dt; a run with dynamics.step_cuts may take more steps: give the scene's)");
+  if (!d.adaptive && d.stepCuts > 0 && step < time / d.dt - 0.5)
+    fail("step " + fmt("%.0f", step) + " at t = " + fmt("%.17g", time) + " s: fewer steps than t / dt " +
+         fmt("%g", time / d.dt) + " (step cuts only add steps)");
   if (sc.count("newton_start") && !wholeIn(sc.at("newton_start"), 0.0, 2.0)) fail("newton_start must be 0, 1 or 2");
   if (sc.count("step_cuts") && (!wholeIn(sc.at("step_cuts"), 1.0, 10.0) || !sc.count("nominal_step") ||
-                                !(sc.at("nominal_step") > 0.0)))
-    fail("step_cuts must be 1..10 with a positive nominal_step");
+                                !(sc.at("nominal_step") > 0.0 && sc.at("nominal_step") <= d.dt * (1.0 + 1e-12))))
+    fail("step_cuts must be 1..10 with a nominal_step in (0, dt]");
+  if (sc.count("step_cuts") && sc.at("step_cuts") > d.stepCuts)
+    fail("the checkpoint is " + fmt("%.0f", sc.at("step_cuts")) + " step cut(s) below dt, more than the scene's " +
+         "dynamics.step_cuts (" + std::to_string(d.stepCuts) + ") allow");
   if (sc.count("bdf_order") && !wholeIn(sc.at("bdf_order"), 1.0, 5.0)) fail("bdf_order must be 1..5");
   if (sc.count("bdf_steps") && !wholeIn(sc.at("bdf_steps"), 0.0, INT_MAX)) fail("bdf_steps must be a step count");
   for (const auto& [key, value] : sc)

@@ -700,6 +700,7 @@ PetscErrorCode Assembler::settleContact(Vec X, Vec V, PetscReal t, bool release,
   PetscCall(endLocal(&x));
   if (V) PetscCall(endLocal(&v));
   PetscCallMPI(MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_SUM, _dofs.comm()));
+  if (!release) _contacts->changedAnywhere(all > 0);  // what a release after it frees, on every rank alike
   *changed = all;
   PetscFunctionReturn(0);
 }

@@ -415,15 +415,17 @@ void PulleyContacts::commit(const double* x, const double* v, double t) {
     });
     _z.swap(z);
   }
+  std::fill(_changed.begin(), _changed.end(), 0);  // a new step: no change seen yet
+  _changedAnywhere = false;
   _tn = t;
 }
 
 int PulleyContacts::settle(const double* x, const double* v, double t, bool release) {
   if (!_hasHistory) return 0;
-  if (release) {  // the law decides at the points that changed at the last settle (all if none did)
-    const bool any = std::find(_changed.begin(), _changed.end(), 1) != _changed.end();
+  if (release) {  // the law decides at the points that changed at the last settle (all if none did, on any rank)
     for (size_t h = 0; h < _state.size(); ++h)
-      if (!any || _changed[h]) _state[h] = 0;
+      if (!_changedAnywhere || _changed[h]) _state[h] = 0;
+    _changedAnywhere = false;
     std::fill(_changed.begin(), _changed.end(), 0);
     return 0;
   }

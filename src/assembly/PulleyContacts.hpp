@@ -68,9 +68,12 @@ public:
   // while Newton solves; settle() compares the states the law takes at the converged (x, v, t) with
   // the held ones, holds the new ones and returns how many changed (a point that had none held, or
   // that left contact, counts as agreeing). Before the first settle none is held. release: hold
-  // none at the points that changed at the last settle (all when none did: after a failed
-  // solve), so that the law decides there within Newton; returns 0.
+  // none at the points that changed at the last settle (all when none did on any rank, as
+  // after a step's first solve fails), so that the law decides there within Newton; returns 0.
   int settle(const double* x, const double* v, double t, bool release);
+  // Whether any point on any rank changed at the last settle (the caller's sum over the ranks): a
+  // release then frees only the points that changed, else all, the same way on every rank.
+  void changedAnywhere(bool any) { _changedAnywhere = any; }
   // The history as (body, element, pulley, point) -> z and t_n, for checkpoints; restore() puts
   // back what history() wrote (on any rank count: each rank takes its own elements' points).
   struct HistoryEntry {
@@ -121,6 +124,7 @@ private:
   std::vector<double> _z;               // committed deflections, per slot
   std::vector<signed char> _state;      // held stick/slip states, per slot (BristleHistory::state)
   std::vector<char> _changed;           // per slot: its state changed at the last settle
+  bool _changedAnywhere = false;        // ... at some slot on some rank (changedAnywhere)
   double _tn = 0.0;                     // the time they belong to
   // Slot h's history at time t (null without the bristle law).
   const contact::BristleHistory* historyAt(size_t h, double t, contact::BristleHistory* buf) const;

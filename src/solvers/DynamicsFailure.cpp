@@ -36,11 +36,11 @@ std::string Dynamics::failureHint(const DynamicsStep&) const {
   if (_desc.integrator == model::Integrator::Bdf)
     return stabilityNote(_desc) + (_desc.adaptive ? "Try tighter rtol/atol, a smaller first dynamics.dt, or -dyn_snes_monitor."
                                                   : "Try a smaller dynamics.dt, adaptive: true, or -dyn_snes_monitor.");
-  if (model::isFirstOrder(_desc.integrator))
-    return "Try a smaller dynamics.dt, or -dyn_snes_monitor.";
-  const std::string cuts = _desc.stepCuts > 0 ? "more dynamics.step_cuts (" + std::to_string(_desc.stepCuts) + " were allowed)"
-                                              : "dynamics.step_cuts: 3 (halve the step where Newton fails)";
-  return "Try a smaller dynamics.dt, " + cuts + ", rho_inf < 1 to damp the highest modes, "
+  // (BDF returned above; the explicit schemes have no Newton)
+  const std::string cuts = _desc.stepCuts >= 10 ? " (10 step cuts did not help)"
+                           : _desc.stepCuts > 0 ? ", more dynamics.step_cuts (" + std::to_string(_desc.stepCuts) + " were allowed)"
+                                                : ", dynamics.step_cuts: 3 (halve the step where Newton fails)";
+  return "Try a smaller dynamics.dt" + cuts + ", rho_inf < 1 to damp the highest modes, "
          "-dyn_ts_strand_alpha_predictor displacement (fine, stiff meshes under suddenly applied loads; "
          "docs/performance.md), or -dyn_snes_monitor.";
 }

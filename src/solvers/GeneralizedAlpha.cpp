@@ -306,6 +306,10 @@ PetscErrorCode step(TS ts) {
       PetscCall(PetscInfo(ts, "Newton failed at t = %g with every retry; the step cut to %g\n",
                           static_cast<double>(ts->ptime + h), static_cast<double>(ts->time_step)));
       PetscCall(VecCopy(d->X0, ts->vec_sol));
+      if (d->settle) {  // a release right after the failure's releases them all
+        PetscInt changed;
+        PetscCall(d->settle(d->settleCtx, d->stageTime, X1, d->V1, PETSC_TRUE, &changed));
+      }
       fresh = PETSC_TRUE;
       retriedAll = false;
       ts->reject++;
@@ -328,9 +332,10 @@ PetscErrorCode step(TS ts) {
       std::swap(d->a, d->a1);
       ts->ptime += h;
       ts->time_step = next;
-      if (d->cuts > 0) {  // after a cut: back towards the nominal step, doubling per accepted step
-        --d->cuts;
-        ts->time_step = d->cuts == 0 ? d->nominal : 2.0 * h;
+      if (d->cuts > 0) {  // after a cut: back towards the nominal step, doubling per accepted step,
+        --d->cuts;        // and not beyond the final time
+        const PetscReal back = d->cuts == 0 ? d->nominal : 2.0 * h, left = ts->max_time - ts->ptime;
+        ts->time_step = left > 0.0 ? PetscMin(back, left) : back;
       }
       break;
     }
@@ -491,6 +496,7 @@ PetscErrorCode GeneralizedAlphaSetAcceleration(TS ts, Vec A) {
   PetscCall(copyInto(A, &d->A));
   PetscCall(copyInto(A, &d->a));  // a_0 = A_0 (Arnold & Bruls 2007, Sec. 3)
   d->checkPredictor = true;       // a new start
+  d->cuts = 0;                    // ... at the nominal step (a resumed run: GeneralizedAlphaResumeStepCuts)
   PetscFunctionReturn(0);
 }
 

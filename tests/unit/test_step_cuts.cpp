@@ -7,11 +7,12 @@
 // inside a window [kHardFrom, kHardTo]. Steps of dt / 4 pass there: two cuts are needed.
 //
 // requirement: without cuts the run stops at the window; with one cut too; with two it runs through,
-//   the steps inside the window are dt / 4, each step after a cut tries twice the last one (dt / 4,
-//   dt / 2, dt) and takes it beyond the window, the run ends at t_end, and x(t_end) keeps the
+//   the steps ending inside the window are dt / 4, each step is at most twice the last (back to
+//   dt by doubling, dt / 4, dt / 2, dt), dt again after the window, the run ends at t_end, and x(t_end) keeps the
 //   accuracy of the nominal step: below twice the error of the same run without the window
 //   (measured 5.7e-6 against 3.4e-6: a change of step costs generalized-alpha a little, its
 //   acceleration-like variable a assumes a constant one);
+// requirement: a cut near t_end still ends at t_end;
 // requirement: GeneralizedAlphaGetStepCuts reports the cuts in force (the next step is
 //   nominal / 2^cuts) and ResumeStepCuts puts them back with that next step.
 #include <gtest/gtest.h>
@@ -77,7 +78,7 @@ PetscErrorCode record(TS ts, PetscInt, PetscReal t, Vec, void* ctx) {
   PetscFunctionReturn(0);
 }
 
-Trajectory integrate(bool hard, int maxCuts) {
+Trajectory integrate(bool hard, int maxCuts, double tEnd = kEnd) {
   MPI_Comm comm = PETSC_COMM_SELF;
   Oscillator o{hard};
   Trajectory r;
@@ -99,7 +100,7 @@ Trajectory integrate(bool hard, int maxCuts) {
   PetscCallAbort(comm, TSSetI2Function(ts, nullptr, residual, &o));
   PetscCallAbort(comm, TSSetI2Jacobian(ts, J, J, jacobian, nullptr));
   PetscCallAbort(comm, TSSetTimeStep(ts, kDt));
-  PetscCallAbort(comm, TSSetMaxTime(ts, kEnd));
+  PetscCallAbort(comm, TSSetMaxTime(ts, tEnd));
   PetscCallAbort(comm, TSSetMaxSteps(ts, 100000));
   PetscCallAbort(comm, TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
   PetscCallAbort(comm, TSSetMaxSNESFailures(ts, 1));
@@ -144,18 +145,33 @@ TEST(StepCuts, AFailedNewtonHalvesTheStepAndTheNextStepsDoubleBack) {
   const double error = std::abs(r.x - std::cos(kOmega * kEnd));
   std::printf("with it and 2 cuts: x(1) error %.3e in %zu steps\n", error, r.steps.size());
   EXPECT_LT(error, 2.0 * reference);
-  // each step tries nominal / 2^cuts first; inside the window that fails and is cut again, beyond it
-  // it is taken
-  double shortest = kDt, t = 0.0;
-  for (size_t i = 0; i + 2 < r.steps.size(); ++i) {  // the last step may be cut to land on t_end
-    t += r.steps[i];
-    shortest = std::min(shortest, r.steps[i]);
-    const double next = r.cuts[i] == 0 ? kDt : std::ldexp(kDt, -r.cuts[i]);
-    if (t + next > kHardTo) EXPECT_NEAR(r.steps[i + 1], next, 1e-12) << "after step " << i;
-    else EXPECT_LE(r.steps[i + 1], next + 1e-12) << "after step " << i;
+  // the steps: dt until a step would end in the window; those that end in it dt / 4 (dt and dt / 2
+  // fail there); each step at most twice the last (back to dt by doubling); dt again from two
+  // nominal steps after the window; the last one lands on t_end
+  double t = 0.0, shortest = kDt;
+  for (size_t i = 0; i + 1 < r.steps.size(); ++i) {
+    const double h = r.steps[i];
+    t += h;
+    shortest = std::min(shortest, h);
+    if (t < kHardFrom - kDt || t > kHardTo + 2.0 * kDt) {
+      EXPECT_NEAR(h, kDt, 1e-12) << "step " << i << " to t = " << t;
+    }
+    if (t > kHardFrom + 1e-12 && t < kHardTo - 1e-12) {
+      EXPECT_NEAR(h, 0.25 * kDt, 1e-12) << "step " << i;
+    }
+    if (i > 0) {
+      EXPECT_LE(h, 2.0 * r.steps[i - 1] + 1e-12) << "step " << i;
+    }
   }
   EXPECT_NEAR(shortest, 0.25 * kDt, 1e-12);
-  EXPECT_NEAR(r.steps[r.steps.size() - 2], kDt, 1e-12);  // back to the nominal step
+}
+
+// requirement: a cut just before t_end does not carry the run past it: the doubled step is cut to
+// land on t_end (t_end = 0.345 s, 5 ms after the window).
+TEST(StepCuts, TheStepsAfterACutLandOnTheFinalTime) {
+  const Trajectory r = integrate(true, 2, 0.345);
+  ASSERT_GT(r.reason, 0);
+  EXPECT_NEAR(r.t, 0.345, 1e-14);
 }
 
 TEST(StepCuts, ResumeRestoresTheCutsAndTheNextStep) {

@@ -117,7 +117,8 @@ PetscErrorCode GeneralizedAlphaResumeStepCuts(TS ts, PetscInt cuts, PetscReal no
 // from X1. After kSettleRounds rounds it is called with release = true (hold none where states
 // still changed: the law decides there within Newton), Newton solves once more, and settle holds
 // the states of that solution for the next step; when a solve fails, the step is retried from X0
-// with the states released.
+// with the states released (SettleFn decides which; a release right after another releases
+// all, as before a step cut).
 using SettleFn = PetscErrorCode (*)(void* ctx, PetscReal t, Vec X, Vec V, PetscBool release, PetscInt* changed);
 PetscErrorCode GeneralizedAlphaSetSettle(TS ts, SettleFn settle, void* ctx);
 
