@@ -1,5 +1,5 @@
-// Step cuts of the generalized-alpha TS (GeneralizedAlphaSetStepCuts, docs/user-guide.md "When
-// Newton fails"): a step whose Newton fails after every retry is halved and tried again, at most
+// Step cuts of the generalized-alpha TS (GeneralizedAlphaSetStepCuts, docs/user-guide.md, "Newton
+// start"): a step whose Newton fails after every retry is halved and tried again, at most
 // maxCuts times in a row, and the steps after it double back to the nominal one.
 //
 // The problem: the undamped oscillator x'' + w^2 x = 0, x(0) = 1, v(0) = 0 (exact: cos w t), whose
