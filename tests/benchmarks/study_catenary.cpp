@@ -32,13 +32,7 @@ int main(int argc, char** argv) {
   b.geometry.kind = model::GeometryKind::Catenary;
   b.geometry.length = L0;
   sc.bodies.push_back(b);
-  for (long node : {0L, -1L}) {
-    model::SupportDesc sup;
-    sup.at.body = "tether";
-    sup.at.node = node;
-    sup.type = model::SupportType::Pinned;
-    sc.supports.push_back(sup);
-  }
+  pinEnds(sc, "tether");
   sc.loads.gravity = {0, 0, -g};
   PetscLogDouble t0, t1;
   PetscCall(PetscTime(&t0));

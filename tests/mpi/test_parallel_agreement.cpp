@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "strand/elements/ElementRegistry.hpp"
 #include "strand/io/SceneReader.hpp"
@@ -36,6 +37,28 @@ void expectAgreement(const model::SceneDescription& sc, int steps, double length
   double diff = 0.0;
   for (size_t k = 0; k < par.size(); ++k) diff = std::max(diff, std::fabs(par[k] - ser[k]));
   EXPECT_LT(diff, 1e-8 * length);
+}
+
+// Runs the dynamics d of scene sc on comm and returns what sample(problem, step, X, V, out) appends
+// at each step (on every rank alike).
+using Sampler = std::function<PetscErrorCode(solvers::Problem&, const solvers::DynamicsStep&, Vec, Vec,
+                                             std::vector<double>&)>;
+std::vector<double> sampledRun(MPI_Comm comm, const model::SceneDescription& sc, const model::DynamicsDesc& d,
+                               const Sampler& sample) {
+  solvers::Problem p(comm, sc);
+  Vec X, V;
+  PetscCallAbort(comm, p.createInitialState(&X, &V));
+  std::vector<double> out;
+  solvers::Dynamics dyn(p.assembler(), d);
+  solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec Xs, Vec Vs) -> PetscErrorCode {
+    return sample(p, st, Xs, Vs, out);
+  };
+  std::string failure;
+  PetscCallAbort(comm, dyn.run(X, V, cb, &failure));
+  EXPECT_EQ(failure, "");
+  VecDestroy(&X);
+  VecDestroy(&V);
+  return out;
 }
 
 // Three cables from the corners of a triangle meet at a hub node, which carries a load.
@@ -197,35 +220,22 @@ TEST(ParallelAgreement, LongFlexibleChainTrajectory) {
   d.rhoInf = 0.9;
   d.dt = 1e-3;
   d.tEnd = 0.3;
-  auto trajectory = [&](MPI_Comm comm) {
-    solvers::Problem p(comm, sc);
-    Vec X, V;
-    PetscCallAbort(comm, p.createInitialState(&X, &V));
-    std::vector<double> tip;
-    solvers::Dynamics dyn(p.assembler(), d);
-    solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep&, Vec Xs, Vec) -> PetscErrorCode {
-      std::vector<double> q;
-      PetscCall(p.assembler().gatherToRoot(Xs, q));
-      double xy[2] = {0, 0};
-      if (!q.empty()) {
-        const model::Vec3 r = nodePosition(p, q, links - 1, -1);
-        xy[0] = r[0];
-        xy[1] = r[1];
-      }
-      MPI_Bcast(xy, 2, MPI_DOUBLE, 0, comm);
-      tip.push_back(xy[0]);
-      tip.push_back(xy[1]);
-      return 0;
-    };
-    std::string failure;
-    PetscCallAbort(comm, dyn.run(X, V, cb, &failure));
-    EXPECT_EQ(failure, "");
-    VecDestroy(&X);
-    VecDestroy(&V);
-    return tip;
+  auto tipOf = [&](solvers::Problem& p, const solvers::DynamicsStep&, Vec Xs, Vec, std::vector<double>& tip) -> PetscErrorCode {
+    std::vector<double> q;
+    PetscCall(p.assembler().gatherToRoot(Xs, q));
+    double xy[2] = {0, 0};
+    if (!q.empty()) {
+      const model::Vec3 r = nodePosition(p, q, links - 1, -1);
+      xy[0] = r[0];
+      xy[1] = r[1];
+    }
+    MPI_Bcast(xy, 2, MPI_DOUBLE, 0, p.assembler().dofs().comm());
+    tip.push_back(xy[0]);
+    tip.push_back(xy[1]);
+    return 0;
   };
-  const auto par = trajectory(PETSC_COMM_WORLD);
-  const auto ser = trajectory(PETSC_COMM_SELF);
+  const auto par = sampledRun(PETSC_COMM_WORLD, sc, d, tipOf);
+  const auto ser = sampledRun(PETSC_COMM_SELF, sc, d, tipOf);
   ASSERT_EQ(par.size(), ser.size());
   double diff = 0.0;
   for (size_t k = 0; k < par.size(); ++k) diff = std::max(diff, std::fabs(par[k] - ser[k]));
@@ -301,28 +311,16 @@ TEST(ParallelAgreement, SerpentineBeltDrive) {
   ASSERT_EQ(sc.pulleys.size(), 5u);
   sc.bodies[0].elements = 1000;
   sc.dynamics.tEnd = 0.03;
-  auto history = [&](MPI_Comm comm) {
-    solvers::Problem p(comm, sc);
-    Vec X, V;
-    PetscCallAbort(comm, p.createInitialState(&X, &V));
-    std::vector<double> out;
-    solvers::Dynamics dyn(p.assembler(), sc.dynamics);
-    solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec Xs, Vec Vs) -> PetscErrorCode {
-      std::vector<assembly::Assembler::PulleyLoad> load;
-      PetscCall(p.assembler().pulleyLoads(Xs, Vs, st.time, load));
-      for (const auto& l : load)
-        for (double v : {l.speed, l.torque, l.slide}) out.push_back(v);
-      return 0;
-    };
-    std::string failure;
-    PetscCallAbort(comm, dyn.run(X, V, cb, &failure));
-    EXPECT_EQ(failure, "");
-    VecDestroy(&X);
-    VecDestroy(&V);
-    return out;
+  auto pulleys = [](solvers::Problem& p, const solvers::DynamicsStep& st, Vec Xs, Vec Vs,
+                    std::vector<double>& out) -> PetscErrorCode {
+    std::vector<assembly::Assembler::PulleyLoad> load;
+    PetscCall(p.assembler().pulleyLoads(Xs, Vs, st.time, load));
+    for (const auto& l : load)
+      for (double v : {l.speed, l.torque, l.slide}) out.push_back(v);
+    return 0;
   };
-  const auto par = history(PETSC_COMM_WORLD);
-  const auto ser = history(PETSC_COMM_SELF);
+  const auto par = sampledRun(PETSC_COMM_WORLD, sc, sc.dynamics, pulleys);
+  const auto ser = sampledRun(PETSC_COMM_SELF, sc, sc.dynamics, pulleys);
   ASSERT_EQ(par.size(), ser.size());
   double diff = 0.0, scale = 0.0;
   for (size_t k = 0; k < par.size(); ++k) {

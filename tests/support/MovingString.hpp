@@ -12,6 +12,7 @@
 #include "strand/elements/ElementRegistry.hpp"
 #include "strand/solvers/Dynamics.hpp"
 #include "strand/solvers/Problem.hpp"
+#include "support/Scenes.hpp"
 
 namespace strand::testing {
 
@@ -47,13 +48,7 @@ inline model::SceneDescription stringScene(const MovingString& s, int elements, 
   b.materialMotion.kind = model::TimeFunction::Kind::Linear;
   b.materialMotion.rate = -s.v / s.lambda();  // p rises at a node as material leaves towards +x
   sc.bodies.push_back(b);
-  for (long node : {0L, -1L}) {
-    model::SupportDesc p;
-    p.at.body = "string";
-    p.at.node = node;
-    p.type = model::SupportType::Pinned;
-    sc.supports.push_back(p);
-  }
+  pinEnds(sc, "string");
   sc.dynamics.integrator = model::Integrator::Newmark;
   sc.dynamics.dt = dt;
   sc.dynamics.tEnd = tEnd;

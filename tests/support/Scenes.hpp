@@ -172,6 +172,17 @@ inline model::SceneDescription cableWithTwoBodies3d(double E) {
   return sc;
 }
 
+// Pins both end nodes of the named body (a span between two fixed points).
+inline void pinEnds(model::SceneDescription& sc, const std::string& body) {
+  for (long node : {0L, -1L}) {
+    model::SupportDesc p;
+    p.at.body = body;
+    p.at.node = node;
+    p.type = model::SupportType::Pinned;
+    sc.supports.push_back(p);
+  }
+}
+
 inline void addTipLoad(model::SceneDescription& sc, model::Vec3 force, model::Vec3 moment = {0, 0, 0}) {
   model::NodalLoadDesc l;
   l.at.body = sc.bodies[0].name;

@@ -160,13 +160,7 @@ TEST(AleCable, WithTheMaterialHeldAHangingCableIsTheLagrangianCables) {
       sc.bodies[0].geometry.kind = model::GeometryKind::Catenary;
       sc.bodies[0].geometry.length = 10.2;
       sc.loads.gravity = {0, 0, -9.81};
-      for (long node : {0L, -1L}) {
-        model::SupportDesc p;
-        p.at.body = "cable";
-        p.at.node = node;
-        p.type = model::SupportType::Pinned;
-        sc.supports.push_back(p);
-      }
+      pinEnds(sc, "cable");
       solvers::Problem p(PETSC_COMM_WORLD, sc);
       const auto q = solveStatic(p, 1);
       for (int n = 0; n <= count; ++n) {
@@ -255,13 +249,7 @@ TEST(AleCable, ASaggingSpanInSteadyFlowHangsAsAtRestWithTheTransportsTension) {
       b.materialMotion.rate = -v;
     }
     sc.loads.gravity = {0, -g, 0};
-    for (long node : {0L, -1L}) {
-      model::SupportDesc p;
-      p.at.body = "span";
-      p.at.node = node;
-      p.type = model::SupportType::Pinned;
-      sc.supports.push_back(p);
-    }
+    pinEnds(sc, "span");
     solvers::Problem p(PETSC_COMM_WORLD, sc);
     const auto q = solveStatic(p, 1);
     if (k == 1) {  // the frozen-state divergence estimate does not apply to it: the tension grows with v

@@ -61,13 +61,7 @@ model::SceneDescription movingSpan(int elements, double l, double E, double A, d
   b.materialMotion.kind = model::TimeFunction::Kind::Linear;
   b.materialMotion.rate = -v / lambda;
   sc.bodies.push_back(b);
-  for (long node : {0L, -1L}) {
-    model::SupportDesc p;
-    p.at.body = "span";
-    p.at.node = node;
-    p.type = model::SupportType::Pinned;
-    sc.supports.push_back(p);
-  }
+  pinEnds(sc, "span");
   return sc;
 }
 
