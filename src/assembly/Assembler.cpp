@@ -95,6 +95,7 @@ Assembler::~Assembler() {
   VecDestroy(&_rWork);
   VecDestroy(&_vWork);
   VecDestroy(&_inertiaWork);
+  VecDestroy(&_aWork);
   VecScatterDestroy(&_toRoot);
   VecDestroy(&_rootVec);
 }
@@ -291,22 +292,39 @@ PetscErrorCode Assembler::residual(Vec X, Vec V, PetscReal t, Vec R, SupportRows
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal t, PetscReal loadFactor, Vec R, SupportRows rows) {
+PetscErrorCode Assembler::residualWithInertia(Vec X, Vec V, Vec A, bool damped, PetscReal t, Vec R, SupportRows rows) {
+  PetscFunctionBeginUser;
+  PetscCall(assembleResidual(X, V, t, _model.loadFactor(t), R, rows, A, damped));
+  PetscCall(addTimedLoads(t, R, -1.0, rows == SupportRows::Value));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal t, PetscReal loadFactor, Vec R, SupportRows rows,
+                                           Vec A, bool damped) {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(evResidual, 0, 0, 0, 0));
-  LocalRead x, v;
+  LocalRead x, v, a;
   LocalSum r;
   PetscCall(beginLocal(X, _xWork, &x));
   if (V) PetscCall(beginLocal(V, _vWork, &v));
-  PetscCall(beginLocalSum(R, {X, V}, &r));
-  for (const auto& f : _families) PetscCallCXX(f->residual(x.a, v.a, loadFactor, r.a));
+  if (A) {
+    if (!_aWork) PetscCall(VecDuplicate(_xWork, &_aWork));
+    PetscCall(beginLocal(A, _aWork, &a));
+  }
+  PetscCall(beginLocalSum(R, {X, V, A}, &r));
+  const double* vd = V && damped ? v.a : nullptr;  // the damping's velocities
+  if (A)
+    for (const auto& f : _families) PetscCallCXX(f->residualWithInertia(x.a, v.a, a.a, damped, loadFactor, r.a));
+  else
+    for (const auto& f : _families) PetscCallCXX(f->residual(x.a, vd, loadFactor, r.a));
   _moments->residual(x.a, loadFactor, r.a);
   PetscCallCXX(_multibody->residual(x.a, _constraintScale, loadFactor, r.a));
   PetscCall(PetscLogEventBegin(evContact, 0, 0, 0, 0));
-  _contacts->residual(x.a, V ? v.a : nullptr, t, r.a);
-  _contacts->pulleyResidual(x.a, V ? v.a : nullptr, r.a);  // free pulleys' damping, tensioners' springs
+  _contacts->residual(x.a, vd, t, r.a);
+  _contacts->pulleyResidual(x.a, vd, r.a);  // free pulleys' damping, tensioners' springs
   PetscCall(PetscLogEventEnd(evContact, 0, 0, 0, 0));
-  _reels->residual(V ? v.a : nullptr, r.a);  // reels' damping
+  _reels->residual(vd, r.a);  // reels' damping
+  if (A) _reels->inertiaResidual(x.a, a.a, r.a);
   PetscCall(endLocalSum(&r));
   // owned rows: nodal forces and supports
   PetscScalar* owned;
@@ -317,6 +335,7 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal t, PetscReal 
   PetscCall(VecRestoreArray(r.owner, &owned));
   PetscCall(endLocal(&x));
   if (V) PetscCall(endLocal(&v));
+  if (A) PetscCall(endLocal(&a));
   PetscCall(deliver(r, R));
   PetscCall(PetscLogEventEnd(evResidual, 0, 0, 0, 0));
   PetscFunctionReturn(0);

@@ -41,6 +41,10 @@ public:
   // J += shiftA M(x) + shiftV dF/dv + dF/dx.
   virtual PetscErrorCode inertiaJacobian(const double* x, const double* v, const double* a, double shiftV,
                                          double shiftA, Mat J, const std::vector<char>& fixed) const = 0;
+  // residual() and inertia() in one pass over the elements (the dynamic residual of a model with
+  // M(q)): r += f_int(x, damped ? v : none) - loadFactor f_ext + F(x, v, a).
+  virtual void residualWithInertia(const double* x, const double* v, const double* a, bool damped, double loadFactor,
+                                   double* r) const = 0;
   // M += M(x) (the consistent start's mass).
   virtual PetscErrorCode massAt(const double* x, Mat M, const std::vector<char>& fixed) const = 0;
   // 1/2 v^T M(x) v.

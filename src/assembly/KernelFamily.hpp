@@ -182,6 +182,39 @@ public:
     }
   }
 
+  // For M(q) kinds: K::force and K::inertiaLessLoad (the inertia less the distributed load, one pass
+  // over the inertia's points) per element, one gather of x, v, a.
+  void residualWithInertia(const double* x, const double* v, const double* a, bool damped, double loadFactor,
+                           double* r) const override {
+    if constexpr (!K::kConstantMass) {
+      static_assert(K::kConfigurationLoads, "an M(q) kind's load rides with its inertia (inertiaLessLoad)");
+      const double omega2 = _model.rotation().omega * _model.rotation().omega;
+      double u[N], q0[N], f[N], ve[N], ae[N], F[N], load[D];
+      for (int k = 0; k < _local.size(); ++k) {
+        const PerBody& pb = perBody(k);
+        gather(k, x, u, q0);
+        gatherVelocity(k, v, ve);
+        gatherVelocity(k, a, ae);
+        K::force(pb.kernel, element(k), q0, u, damped ? ve : static_cast<const double*>(nullptr), f);
+        if (omega2 != 0.0) addCentrifugalForce(k, q0, u, loadFactor * omega2, f);
+        for (int i = 0; i < D; ++i) load[i] = loadFactor * loadPerLength(k)[i];
+        K::inertiaLessLoad(pb.kernel, element(k), q0, u, ve, ae, load, F);
+        const auto& fe = pb.load;
+        const PetscInt* lb = _local.localBlocksOf(k);
+        for (int b = 0; b < B; ++b)
+          for (int i = 0; i < D; ++i) r[lb[b] * D + i] += f[b * D + i] + F[b * D + i] - loadFactor * fe[b * D + i];
+      }
+      for (const auto& pl : _pointMassLoad) {
+        const PetscInt* lb = _local.localBlocksOf(pl.localElement);
+        for (int b = 0; b < B; ++b)
+          for (int i = 0; i < D; ++i) r[lb[b] * D + i] -= loadFactor * pl.force[b * D + i];
+      }
+    } else {
+      residual(x, damped ? v : nullptr, loadFactor, r);
+      (void)a;
+    }
+  }
+
   PetscErrorCode inertiaJacobian(const double* x, const double* v, const double* a, double shiftV, double shiftA,
                                  Mat J, const std::vector<char>& fixed) const override {
     PetscFunctionBeginUser;

@@ -262,9 +262,7 @@ PetscErrorCode Dynamics::consistentAcceleration(PetscReal t, Vec X, Vec V, Vec A
   }
   PetscCall(VecSet(A, 0.0));
   PetscCall(_asm.prescribedMotion(t, nullptr, nullptr, A));
-  PetscCall(_asm.residual(X, _damped ? V : nullptr, t, _w1));
-  PetscCall(MatMultAdd(_M, A, _w1, _w1));
-  if (_variableMass) PetscCall(_asm.addInertia(X, V, A, _w1));  // M(q) a_p + Q_p(q, v)
+  PetscCall(dynamicResidual(X, V, A, t, _w1, assembly::SupportRows::Value));  // with M(q) a_p + Q_p(q, v)
   PetscCall(_asm.zeroSupportedRows(_w1));
   PetscCall(VecScale(_w1, -1.0));
   if (_constrained) {
@@ -372,9 +370,7 @@ PetscErrorCode Dynamics::supportForce(Vec F) {
   PetscCall(TS2GetSolution(_ts, &X, &V));
   PetscCall(TSGetTime(_ts, &t));
   PetscCall(currentAcceleration(&A));
-  PetscCall(_asm.residual(X, _damped ? V : nullptr, t, F, assembly::SupportRows::Reaction));
-  PetscCall(MatMultAdd(_M, A, F, F));
-  if (_variableMass) PetscCall(_asm.addInertia(X, V, A, F));
+  PetscCall(dynamicResidual(X, V, A, t, F, assembly::SupportRows::Reaction));
   PetscCall(VecPointwiseMult(F, F, _supported));
   PetscFunctionReturn(0);
 }
@@ -403,9 +399,7 @@ PetscErrorCode Dynamics::supportForceAt(PetscReal t, Vec X, Vec V, Vec F) {
   } else {
     PetscCall(_space->acceleration(t, X, V, _acc));
   }
-  PetscCall(_asm.residual(X, _damped ? V : nullptr, t, F, assembly::SupportRows::Reaction));
-  PetscCall(MatMultAdd(_M, _acc, F, F));
-  if (_variableMass) PetscCall(_asm.addInertia(X, V, _acc, F));
+  PetscCall(dynamicResidual(X, V, _acc, t, F, assembly::SupportRows::Reaction));
   PetscCall(VecPointwiseMult(F, F, _supported));
   PetscFunctionReturn(0);
 }
@@ -414,9 +408,7 @@ PetscErrorCode Dynamics::supportForceAt(PetscReal t, Vec X, Vec V, Vec F) {
 PetscErrorCode Dynamics::formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec F, void* ctx) {
   PetscFunctionBeginUser;
   auto* self = static_cast<Dynamics*>(ctx);
-  PetscCall(self->_asm.residual(U, self->_damped ? V : nullptr, t, F, assembly::SupportRows::Reaction));
-  PetscCall(MatMultAdd(self->_M, A, F, F));
-  if (self->_variableMass) PetscCall(self->_asm.addInertia(U, V, A, F));
+  PetscCall(self->dynamicResidual(U, V, A, t, F, assembly::SupportRows::Reaction));
   if (self->_moving) {  // the support force of this state; the last call of a step is at its end
     PetscCall(VecPointwiseMult(self->_reaction, F, self->_supported));
     self->_reactionValid = true;
@@ -503,6 +495,15 @@ PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, P
     else PetscCall(supportForce(_w1));
     PetscCall(VecDot(_w1, V, support));
   }
+  PetscFunctionReturn(0);
+}
+
+// F = M A + f_int(X, V) - f_ext(t), with the inertia of kinds with M(q) in the same element pass.
+PetscErrorCode Dynamics::dynamicResidual(Vec X, Vec V, Vec A, PetscReal t, Vec F, assembly::SupportRows rows) {
+  PetscFunctionBeginUser;
+  if (_variableMass) PetscCall(_asm.residualWithInertia(X, V, A, _damped, t, F, rows));
+  else PetscCall(_asm.residual(X, _damped ? V : nullptr, t, F, rows));
+  PetscCall(MatMultAdd(_M, A, F, F));
   PetscFunctionReturn(0);
 }
 

@@ -119,6 +119,21 @@ TEST(AleBeamShaft, InertiaTangentsAreTheExactDerivatives) {
     for (int c = 0; c < N; ++c) EXPECT_NEAR(M[r * N + c], M[c * N + r], 1e-12 * maxAbs(M, N * N));
 }
 
+// The dynamic residual's one pass (KernelFamily::residualWithInertia): inertiaLessLoad = inertia -
+// Q_f, the spin's inertia included.
+TEST(AleBeamShaft, InertiaLessLoadIsTheInertiaLessTheDistributedLoad) {
+  Fixture fx;
+  const E::Element el = E::element(fx.body, nullptr);
+  const double load[3] = {0.3, -9.81, 1.7};
+  double F[N], Q[N], both[N];
+  E::inertia(fx.body, el, fx.q0, fx.u, fx.v, fx.a, F);
+  E::distributedLoad(fx.body, fx.q0, fx.u, load, Q);
+  E::inertiaLessLoad(fx.body, el, fx.q0, fx.u, fx.v, fx.a, load, both);
+  const double s = std::max(maxAbs(F, N), maxAbs(Q, N));
+  EXPECT_NE(F[E::kT1], 0.0);  // the spin's inertia is there (the cable part has none on theta)
+  for (int k = 0; k < N; ++k) EXPECT_NEAR(both[k], F[k] - Q[k], 1e-14 * s) << "entry " << k;
+}
+
 TEST(AleBeamShaft, InertiaIsLagrangesEquationPlusTheMomentumFluxThroughTheEnds) {
   Fixture fx;
   const E::Element el = E::element(fx.body, nullptr);

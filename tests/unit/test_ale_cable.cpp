@@ -100,6 +100,56 @@ TYPED_TEST(AleCableTest, ElasticTangentIsTheExactDerivativeAndTheForceTheEnergyG
   for (int k = 0; k < N * N; ++k) EXPECT_NEAR(K[k], Kad[k], 1e-11 * sK) << "K entry " << k;
 }
 
+// The force evaluates its points as arrays padded to an even count (AleCableKernels.hpp): every
+// elastic rule of 2 to 8 points (odd counts padded) gives the energy's gradient, and the pointwise
+// hand-derived tangent is its derivative.
+TYPED_TEST(AleCableTest, EveryPointCountGivesTheEnergyGradientAndItsTangent) {
+  constexpr int D = TypeParam::value;
+  using E = AleCable<D>;
+  constexpr int N = E::kDof;
+  using Dl = math::Dual<N>;
+  Fixture<D> fx;
+  for (int points = 2; points <= 8; ++points) {
+    SectionValues s;
+    s.numbers = {{"E", 2e7}, {"A", 1e-3}, {"I", 3e-7}, {"rho", 1000.0}};
+    const typename E::Body body = E::body(s, {0.7, 1.0, points});
+    const typename E::Element el = E::element(body, nullptr);
+    double f[N], K[N * N];
+    E::tangent(body, el, fx.q0, fx.u, nullptr, f, K, nullptr);
+    Dl ud[N], fd[N];
+    for (int k = 0; k < N; ++k) ud[k] = Dl::variable(fx.u[k], k);
+    E::force(body, el, fx.q0, ud, static_cast<const Dl*>(nullptr), fd);
+    const Dl U = E::strainEnergy(body, el, fx.q0, ud);
+    double Kad[N * N], fv[N];
+    for (int r = 0; r < N; ++r) {
+      fv[r] = fd[r].v;
+      for (int c = 0; c < N; ++c) Kad[r * N + c] = fd[r].d[c];
+    }
+    const double sK = maxAbs(Kad, N * N), sF = maxAbs(f, N);
+    for (int k = 0; k < N; ++k) {
+      EXPECT_NEAR(fv[k], U.d[k], 1e-11 * sF) << points << " points, f = dU/du, entry " << k;
+      EXPECT_NEAR(f[k], fv[k], 1e-12 * sF) << points << " points, the tangent's f, entry " << k;
+    }
+    for (int k = 0; k < N * N; ++k) EXPECT_NEAR(K[k], Kad[k], 1e-11 * sK) << points << " points, K entry " << k;
+  }
+}
+
+// The dynamic residual's one pass over the inertia's points: inertiaLessLoad = inertia - Q_f.
+TYPED_TEST(AleCableTest, InertiaLessLoadIsTheInertiaLessTheDistributedLoad) {
+  constexpr int D = TypeParam::value;
+  using E = AleCable<D>;
+  constexpr int N = E::kDof;
+  Fixture<D> fx;
+  const typename E::Element el = E::element(fx.body, nullptr);
+  const double load[3] = {0.3, -9.81, D == 3 ? 1.7 : 0.0};
+  double F[N], Q[N], both[N];
+  E::inertia(fx.body, el, fx.q0, fx.u, fx.v, fx.a, F);
+  E::distributedLoad(fx.body, fx.q0, fx.u, load, Q);
+  E::inertiaLessLoad(fx.body, el, fx.q0, fx.u, fx.v, fx.a, load, both);
+  const double s = std::max(maxAbs(F, N), maxAbs(Q, N));
+  for (int k = 0; k < N; ++k) EXPECT_NEAR(both[k], F[k] - Q[k], 1e-14 * s) << "entry " << k;
+}
+
 TYPED_TEST(AleCableTest, WithTheMaterialCoordinatesHeldItIsTheLagrangianCable) {
   constexpr int D = TypeParam::value;
   using E = AleCable<D>;

@@ -92,6 +92,10 @@ public:
   // included). hasVariableMass() tells whether the model has such kinds.
   bool hasVariableMass() const { return !_model.constantMass(); }
   PetscErrorCode addInertia(Vec X, Vec V, Vec A, Vec R);
+  // residual(X, damped ? V : null, t, R, rows) + F(X, V, A) in one pass over the elements (the
+  // dynamic residual of a model with variable mass; addInertia's F included).
+  PetscErrorCode residualWithInertia(Vec X, Vec V, Vec A, bool damped, PetscReal t, Vec R,
+                                     SupportRows rows = SupportRows::Value);
   // Its derivatives alone: J = shiftA dF/dA + shiftV dF/dV + dF/dX of the variable-mass kinds at
   // (X, V, A) (supported rows and columns left out, no unit diagonal): the linearized modes about
   // a steady material flow (solvers/ModalSolver.hpp).
@@ -199,7 +203,10 @@ private:
   PetscErrorCode addGhostsToOwners(Vec work);
   // R = the owned sum of add(x, w, r) over the ghosted local forms of X and W (joint terms).
   PetscErrorCode jointVector(Vec X, Vec W, const std::function<void(const double*, const double*, double*)>& add, Vec R);
-  PetscErrorCode assembleResidual(Vec X, Vec V, PetscReal t, PetscReal loadFactor, Vec R, SupportRows rows);
+  // With A: the inertia of the variable-mass kinds too, V then its velocities (and the damping's
+  // when damped).
+  PetscErrorCode assembleResidual(Vec X, Vec V, PetscReal t, PetscReal loadFactor, Vec R, SupportRows rows,
+                                  Vec A = nullptr, bool damped = true);
   PetscErrorCode assembleWithSupportDiagonal(Mat J) const;
 
   const model::Model& _model;
@@ -214,6 +221,7 @@ private:
   std::vector<double> _v0Owned;             // initial velocities, owned DOFs
   Vec _xWork = nullptr, _rWork = nullptr, _vWork = nullptr;  // ghosted work vectors
   Vec _inertiaWork = nullptr;  // addInertia's sum (made at its first call)
+  Vec _aWork = nullptr;        // residualWithInertia's local form of A (made at its first call)
   bool _haveGhosts = true;  // on some rank
   std::vector<char> _fixedLocal;           // per DOF of the ghosted local form
   std::vector<char> _noneFixed;            // all zero, same size

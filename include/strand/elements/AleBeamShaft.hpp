@@ -143,12 +143,16 @@ public:
   template <class S>
   static void inertia(const Body& b, const Element&, const double* q0, const S* u, const S* v, const S* a, S* F) {
     Cable::inertia(b, Cable::Element{&b}, q0, u, v, a, F);
-    const S L = (q0[kP2] + u[kP2]) - (q0[kP1] + u[kP1]);
-    for (int g = 0; g < b.inertial.size(); ++g) {
-      const Spin<S> s(b.inertial.x[g], q0, u, v, a, L);
-      const S scale = b.inertial.w[g] * L * b.rhoIp * s.thdd;
-      for (int k = 0; k < 4; ++k) F[s.col[k]] += scale * s.Sr[k];
-    }
+    addSpinInertia(b, q0, u, v, a, F);
+  }
+
+  // The inertia less a force per unit length on the material (the dynamic residual's; the load
+  // moves no spin).
+  template <class S>
+  static void inertiaLessLoad(const Body& b, const Element&, const double* q0, const S* u, const S* v, const S* a,
+                              const double* load, S* F) {
+    Cable::inertiaLessLoad(b, Cable::Element{&b}, q0, u, v, a, load, F);
+    addSpinInertia(b, q0, u, v, a, F);
   }
 
   template <class S>
@@ -198,6 +202,17 @@ public:
   static bool velocityDependent(const Body& b) { return Cable::velocityDependent(b) || b.dampTorsion != 0.0; }
 
 private:
+  // F += rho I_p int S_r^T thetaddot dp.
+  template <class S>
+  static void addSpinInertia(const Body& b, const double* q0, const S* u, const S* v, const S* a, S* F) {
+    const S L = (q0[kP2] + u[kP2]) - (q0[kP1] + u[kP1]);
+    for (int g = 0; g < b.inertial.size(); ++g) {
+      const Spin<S> s(b.inertial.x[g], q0, u, v, a, L);
+      const S scale = b.inertial.w[g] * L * b.rhoIp * s.thdd;
+      for (int k = 0; k < 4; ++k) F[s.col[k]] += scale * s.Sr[k];
+    }
+  }
+
   // The spin of the material point xi: its rate thd, its acceleration thdd and the row S_r over the
   // columns col = (theta1, theta2, p1, p2).
   template <class S>

@@ -31,6 +31,7 @@
 #pragma once
 #include <cmath>
 
+#include "strand/elements/AleCableKernels.hpp"
 #include "strand/elements/AncfCable.hpp"
 #include "strand/elements/ElementKind.hpp"
 #include "strand/math/Dual.hpp"
@@ -42,6 +43,7 @@ namespace strand::elements {
 template <int D>
 class AleCable {
   using Cable = AncfCable<D>;
+  using Kernels = AleCableKernels<D>;
 
 public:
   static constexpr int kDim = D;
@@ -70,6 +72,7 @@ public:
   struct Body {
     CableSection section;
     math::QuadratureRule elastic, inertial;  // the elastic rule (gauss_points) and 4 points for the inertia
+    AlePointArrays elasticPoints, inertialPoints;  // the same as arrays (AleCableKernels.hpp)
   };
   struct Element {
     const Body* body = nullptr;
@@ -84,6 +87,8 @@ public:
                  v.number("damping_axial"), v.number("damping_bending")};
     b.elastic = math::gaussLegendre(d.gaussPoints);
     b.inertial = math::gaussLegendre(4);
+    b.elasticPoints = AlePointArrays::of(b.elastic);
+    b.inertialPoints = AlePointArrays::of(b.inertial);
     return b;
   }
   static Element element(const Body& b, const double*) { return Element{&b}; }
@@ -97,34 +102,15 @@ public:
   //   Gdot = (dG/dq at fixed xi) qdot + G_xi xidot,   G_xi = (L r'', L r'''),
   // with xidot = -((1 - xi) p1dot + xi p2dot) / L; their virtual work is taken at fixed xi, as the
   // seed's Eq. 31 does (delta eps = eps_q delta q), so the p rows get L f_G . G_L and no W term.
+  // (AleCableKernels::force, the points as arrays.)
   template <class S>
   static void force(const Body& b, const Element&, const double* q0, const S* u, const S* v, S* f) {
-    S q[kDof];
-    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], f[k] = S(0.0);
-    const S L = q[kP2] - q[kP1];
     const bool damped = v && velocityDependent(b);
-    S fL(0.0);
-    for (int g = 0; g < b.elastic.size(); ++g) {
-      const double xi = b.elastic.x[g];
-      Coefficients<S> c(xi, L);
-      S G[kG], fG[kG], Gd[kG];
-      c.gather(q, G);
-      const S W = energyDensity(b.section, G);
-      S eps(0.0);
-      for (int i = 0; i < D; ++i) eps += 0.5 * G[i] * G[i];
-      if (damped) materialRate(c, xi, q, v, L, G, Gd);
-      Cable::pointForce(b.section, 0.0, eps - 0.5, G, damped ? Gd : static_cast<const S*>(nullptr), fG);
-      const S wl = b.elastic.w[g] * L;
-      for (int k = 0; k < 4; ++k)
-        for (int i = 0; i < D; ++i) f[slotIndex(k) + i] += wl * (c.B1[k] * fG[i] + c.B2[k] * fG[D + i]);
-      S GL[kG];
-      c.gatherL(q, GL);
-      S dot(0.0);
-      for (int k = 0; k < kG; ++k) dot += fG[k] * GL[k];
-      fL += b.elastic.w[g] * (W + L * dot);
-    }
-    f[kP1] = -fL;
-    f[kP2] = fL;
+    withPaddedPoints(b.elasticPoints, [&](auto p) {
+      constexpr int P = decltype(p)::value;
+      if (damped) Kernels::template force<P, true>(b.section, b.elasticPoints, q0, u, v, f);
+      else Kernels::template force<P, false>(b.section, b.elasticPoints, q0, u, v, f);
+    });
   }
 
   static void tangent(const Body& b, const Element& e, const double* q0, const double* u, const double* v, double* f,
@@ -213,56 +199,31 @@ public:
 
   template <class S>
   static S strainEnergy(const Body& b, const Element&, const double* q0, const S* u) {
-    S q[kDof];
-    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k];
-    const S L = q[kP2] - q[kP1];
-    S U(0.0);
-    for (int g = 0; g < b.elastic.size(); ++g) {
-      Coefficients<S> c(b.elastic.x[g], L);
-      S G[kG];
-      c.gather(q, G);
-      U += b.elastic.w[g] * L * energyDensity(b.section, G);
-    }
-    return U;
+    return withPaddedPoints(b.elasticPoints, [&](auto p) {
+      return Kernels::template strainEnergy<decltype(p)::value>(b.section, b.elasticPoints, q0, u);
+    });
   }
 
   // ---- inertia: F = M(q) a + Q_p(q, v) ----
 
+  // (AleCableKernels::materialForce, the points as arrays.)
   template <class S>
   static void inertia(const Body& b, const Element&, const double* q0, const S* u, const S* v, const S* a, S* F) {
-    S q[kDof];
-    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], F[k] = S(0.0);
-    const S L = q[kP2] - q[kP1];
-    for (int g = 0; g < b.inertial.size(); ++g) {
-      const double xi = b.inertial.x[g];
-      Point<S> pt(xi, q, v, a, L);
-      const S scale = b.inertial.w[g] * L * b.section.rhoA;
-      for (int k = 0; k < 4; ++k)
-        for (int i = 0; i < D; ++i) F[slotIndex(k) + i] += scale * pt.N[k] * pt.rdd[i];
-      S s1(0.0), s2(0.0);
-      for (int i = 0; i < D; ++i) {
-        s1 += pt.Sp1[i] * pt.rdd[i];
-        s2 += pt.Sp2[i] * pt.rdd[i];
-      }
-      F[kP1] += scale * s1;
-      F[kP2] += scale * s2;
-    }
+    Kernels::template materialForce<4, true>(b.section.rhoA, b.inertialPoints, q0, u, v, a, nullptr, F);
+  }
+
+  // The inertia less a load per unit length on the material, F - Q_f (inertia() and
+  // distributedLoad() in one pass over the points: the dynamic residual's).
+  template <class S>
+  static void inertiaLessLoad(const Body& b, const Element&, const double* q0, const S* u, const S* v, const S* a,
+                              const double* load, S* F) {
+    Kernels::template materialForce<4, true>(b.section.rhoA, b.inertialPoints, q0, u, v, a, load, F);
   }
 
   // Kinetic energy 1/2 int rho A |rdot|^2 dp = 1/2 v^T M(q) v.
   template <class S>
   static S kineticEnergy(const Body& b, const double* q0, const S* u, const S* v) {
-    S q[kDof], zero[kDof];
-    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], zero[k] = S(0.0);
-    const S L = q[kP2] - q[kP1];
-    S T(0.0);
-    for (int g = 0; g < b.inertial.size(); ++g) {
-      Point<S> pt(b.inertial.x[g], q, v, zero, L);
-      S rd2(0.0);
-      for (int i = 0; i < D; ++i) rd2 += pt.rd[i] * pt.rd[i];
-      T += 0.5 * b.inertial.w[g] * L * b.section.rhoA * rd2;
-    }
-    return T;
+    return Kernels::template kineticEnergy<4>(b.section.rhoA, b.inertialPoints, q0, u, v);
   }
 
   // The inertia's derivatives: M = dF/da, C = dF/dv, Kq = dF/du (row-major kDof x kDof); F optional.
@@ -318,30 +279,9 @@ public:
 
   template <class S>
   static void distributedLoad(const Body& b, const double* q0, const S* u, const double* fvec, S* Q) {
-    S q[kDof];
-    for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k], Q[k] = S(0.0);
-    const S L = q[kP2] - q[kP1];
-    for (int g = 0; g < b.inertial.size(); ++g) {
-      // Q = L w S^T f with S's columns N_k (slots) and S_p1, S_p2 (Point's; only N, phi_X, phi_L
-      // enter, so they are formed here without the velocity and acceleration terms)
-      const double xi = b.inertial.x[g];
-      const math::HermiteValues h = math::hermite(xi);
-      S N[4], phiXf(0.0), phiLf(0.0);  // phi_X . f, phi_L . f
-      for (int k = 0; k < 4; ++k) {
-        const bool pos = k % 2 == 0;
-        N[k] = pos ? S(h.s[k]) : L * h.s[k];
-        const S Nx = pos ? S(h.ds[k]) : L * h.ds[k];
-        for (int i = 0; i < D; ++i) {
-          phiXf += Nx * (q[slotIndex(k) + i] * fvec[i]);
-          if (!pos) phiLf += h.s[k] * (q[slotIndex(k) + i] * fvec[i]);
-        }
-      }
-      const S scale = b.inertial.w[g] * L;
-      for (int k = 0; k < 4; ++k)
-        for (int i = 0; i < D; ++i) Q[slotIndex(k) + i] += scale * N[k] * fvec[i];
-      Q[kP1] += scale * (-phiXf * (1.0 - xi) / L - phiLf);  // S_p1 . f
-      Q[kP2] += scale * (-phiXf * xi / L + phiLf);          // S_p2 . f
-    }
+    Kernels::template materialForce<4, false>(0.0, b.inertialPoints, q0, u, static_cast<const S*>(nullptr),
+                                              static_cast<const S*>(nullptr), fvec, Q);
+    for (int k = 0; k < kDof; ++k) Q[k] = -Q[k];
   }
 
   // dQ_f/du (row-major kDof x kDof).
@@ -400,18 +340,6 @@ public:
   static void referenceValues(const Body&, const double*, double*) {}
 
 private:
-  // W = EA eps^2 / 2 + EI kappa^2 / 2 with eps = (r'.r' - 1)/2 (absolute: p is unstretched arc length).
-  template <class S>
-  static S energyDensity(const CableSection& sec, const S* G) {
-    S s(0.0);
-    for (int i = 0; i < D; ++i) s += G[i] * G[i];
-    const S eps = 0.5 * (s - 1.0);
-    S kap[Cable::kCurv], k2(0.0);
-    Cable::curvature(G, kap);
-    for (int i = 0; i < Cable::kCurv; ++i) k2 += kap[i] * kap[i];
-    return 0.5 * sec.EA * eps * eps + 0.5 * sec.EI * k2;
-  }
-
   // The slot coefficients of r' (B1) and r'' (B2) at xi for the length L, and their L-derivatives.
   template <class S>
   struct Coefficients {
@@ -444,24 +372,6 @@ private:
     template <class Q> void gatherL(const Q* q, S* G) const { combine(dB1, dB2, q, G); }
     template <class Q> void gatherLL(const Q* q, S* G) const { combine(ddB1, ddB2, q, G); }
   };
-
-  // Gdot of the material point xi (see force()): the B-weighted slot velocities, the L-derivative
-  // times Ldot, and G_xi xidot with r''' = sum h'''_k (slot weights 1/L^3 for positions, 1/L^2 for
-  // slopes; h''' = 12, 6, -12, 6 for the cubic Hermite functions on [0, 1]).
-  template <class S, class Q, class V>
-  static void materialRate(const Coefficients<S>& c, double xi, const Q* q, const V* v, const S& L, const S* G, S* Gd) {
-    static constexpr double h3[4] = {12.0, 6.0, -12.0, 6.0};
-    S Gv[kG], GL[kG];
-    c.gather(v, Gv);
-    c.gatherL(q, GL);
-    const S Ldot = v[kP2] - v[kP1], xid = -((1.0 - xi) * v[kP1] + xi * v[kP2]) / L;
-    for (int i = 0; i < D; ++i) {
-      S r3(0.0);
-      for (int k = 0; k < 4; ++k) r3 += (k % 2 == 0 ? h3[k] / (L * L * L) : h3[k] / (L * L)) * q[slotIndex(k) + i];
-      Gd[i] = Gv[i] + GL[i] * Ldot + L * G[D + i] * xid;
-      Gd[D + i] = Gv[D + i] + GL[D + i] * Ldot + L * r3 * xid;
-    }
-  }
 
   // One material point xi of the element: its velocity and acceleration (seed 000 Eq. 13-17), the
   // columns S_p1, S_p2 of S = d rdot / d qdot, and (derivatives()) the exact derivatives of rddot

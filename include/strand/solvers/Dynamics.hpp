@@ -111,6 +111,7 @@ public:
   PetscErrorCode run(Vec X, Vec V, const StepCallback& onStep, std::string* failure);
   // Energies of a state (all ranks).
   PetscErrorCode energies(Vec X, Vec V, DynamicsStep* s);
+  PetscErrorCode dynamicResidual(Vec X, Vec V, Vec A, PetscReal t, Vec F, assembly::SupportRows rows);
   // The force the supports exert on the body, f_s = M a + f_int - f_ext on supported rows (zero
   // elsewhere), at the current state of the integration (inside a step callback, or after run()).
   PetscErrorCode supportForce(Vec F);
