@@ -101,7 +101,7 @@ public:
     const double omega2 = _model.rotation().omega * _model.rotation().omega;
     double u[N], q0[N], Ke[N * N];
     ElementInserter toJ;
-    PetscCall(ElementInserter::create(J, _dofs, _local, &toJ));
+    PetscCall(ElementInserter::create(J, _dofs, _local, &toJ, &fixed));
     for (int k = 0; k < _local.size(); ++k) {
       gather(k, x, u, q0);
       K::tangent(perBody(k).kernel, element(k), q0, u, nullptr, nullptr, Ke, nullptr);
@@ -120,8 +120,8 @@ public:
     PetscFunctionBeginUser;
     double u[N], q0[N], ve[N], Ke[N * N], De[N * N];
     ElementInserter toJ, toD;
-    PetscCall(ElementInserter::create(J, _dofs, _local, &toJ));
-    if (Dmat) PetscCall(ElementInserter::create(Dmat, _dofs, _local, &toD));
+    PetscCall(ElementInserter::create(J, _dofs, _local, &toJ, &fixed));
+    if (Dmat) PetscCall(ElementInserter::create(Dmat, _dofs, _local, &toD, &fixed));
     for (int k = 0; k < _local.size(); ++k) {
       const PerBody& pb = perBody(k);
       gather(k, x, u, q0);
@@ -221,7 +221,7 @@ public:
     if constexpr (!K::kConstantMass) {
       double u[N], q0[N], ve[N], ae[N], M[N * N], C[N * N], Kq[N * N];
       ElementInserter toJ;
-      PetscCall(ElementInserter::create(J, _dofs, _local, &toJ));
+      PetscCall(ElementInserter::create(J, _dofs, _local, &toJ, &fixed));
       for (int k = 0; k < _local.size(); ++k) {
         gather(k, x, u, q0);
         gatherVelocity(k, v, ve);
@@ -242,7 +242,7 @@ public:
     if constexpr (!K::kConstantMass) {
       double u[N], q0[N], zero[N] = {}, M[N * N], C[N * N], Kq[N * N];
       ElementInserter toM;
-      PetscCall(ElementInserter::create(Mat_, _dofs, _local, &toM));
+      PetscCall(ElementInserter::create(Mat_, _dofs, _local, &toM, &fixed));
       for (int k = 0; k < _local.size(); ++k) {
         gather(k, x, u, q0);
         K::inertiaTangent(perBody(k).kernel, element(k), q0, u, zero, zero, nullptr, M, C, Kq);
@@ -394,7 +394,7 @@ private:
     PetscFunctionBeginUser;
     double Ae[N * N];
     ElementInserter toA;
-    PetscCall(ElementInserter::create(A, _dofs, _local, &toA));
+    PetscCall(ElementInserter::create(A, _dofs, _local, &toA, &fixed));
     for (int k = 0; k < _local.size(); ++k) {
       for (double& a : Ae) a = 0.0;
       addMassBlocks(k, s, X, Ae);

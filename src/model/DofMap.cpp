@@ -195,6 +195,10 @@ DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()
     }
     _cplOffset.push_back(static_cast<PetscInt>(_cplGlobal.size()));
   }
+  _coupledLocal.assign(_end - _begin + _ghosts.size(), 0);
+  for (const Coupling& c : couplings)
+    for (int b : c.blocks)
+      if (const PetscInt lb = localBlock(_global[b]); lb >= 0) _coupledLocal[lb] = 1;
   // 4. exact preallocation of the owned block rows (every rank sees every element)
   std::vector<PetscInt> rowOf(nb, -1), xadj, adj;
   for (int b = 0; b < nb; ++b)

@@ -47,6 +47,22 @@ struct AleCableKernels {
   static constexpr int kDof = 6 * D;
   static constexpr int kX1 = 0, kS1 = D, kP1 = 2 * D, kX2 = 3 * D, kS2 = 4 * D, kP2 = 5 * D;
 
+  // sum_g t[g] as a pairwise tree: the terms are formed elementwise over the points (vectorized),
+  // and the halves are added pairwise, which the compiler vectorizes too (a running sum it may not
+  // reorder).
+  template <int P, class S>
+  [[gnu::always_inline]] static S sum(const S* t) {
+    if constexpr (P == 1) {
+      return t[0];
+    } else if constexpr (P % 2 == 1) {
+      return sum<P - 1>(t) + t[P - 1];
+    } else {
+      S h[P / 2];
+      for (int g = 0; g < P / 2; ++g) h[g] = t[g] + t[g + P / 2];
+      return sum<P / 2>(h);
+    }
+  }
+
   // The element's current chord, slopes and material length (relative forms, see above).
   template <class S>
   struct Nodes {
@@ -131,24 +147,26 @@ struct AleCableKernels {
       for (int k = 0; k < kG; ++k) fG[k][g] = fGg[k];
     }
     for (int k = 0; k < kDof; ++k) f[k] = S(0.0);
-    S fL(0.0);
+    S tL[P];
     for (int g = 0; g < P; ++g) {
-      S dot(0.0);
-      for (int k = 0; k < kG; ++k) dot += fG[k][g] * GL[k][g];
-      fL += t.w[g] * (W[g] + n.L * dot);
+      S dot = fG[0][g] * GL[0][g];
+      for (int k = 1; k < kG; ++k) dot += fG[k][g] * GL[k][g];
+      tL[g] = t.w[g] * (W[g] + n.L * dot);
     }
     for (int i = 0; i < D; ++i) {
-      S fx(0.0), f1(0.0), f2(0.0);
+      S tx[P], t1[P], t2[P];
       for (int g = 0; g < P; ++g) {
-        fx += t.w[g] * (t.dh[2][g] * fG[i][g] + t.ddh[2][g] * iL * fG[D + i][g]);
-        f1 += t.w[g] * (n.L * t.dh[1][g] * fG[i][g] + t.ddh[1][g] * fG[D + i][g]);
-        f2 += t.w[g] * (n.L * t.dh[3][g] * fG[i][g] + t.ddh[3][g] * fG[D + i][g]);
+        tx[g] = t.w[g] * (t.dh[2][g] * fG[i][g] + t.ddh[2][g] * iL * fG[D + i][g]);
+        t1[g] = t.w[g] * (n.L * t.dh[1][g] * fG[i][g] + t.ddh[1][g] * fG[D + i][g]);
+        t2[g] = t.w[g] * (n.L * t.dh[3][g] * fG[i][g] + t.ddh[3][g] * fG[D + i][g]);
       }
+      const S fx = sum<P>(tx);
       f[kX1 + i] = -fx;
       f[kX2 + i] = fx;
-      f[kS1 + i] = f1;
-      f[kS2 + i] = f2;
+      f[kS1 + i] = sum<P>(t1);
+      f[kS2 + i] = sum<P>(t2);
     }
+    const S fL = sum<P>(tL);
     f[kP1] = -fL;
     f[kP2] = fL;
   }
@@ -157,14 +175,14 @@ struct AleCableKernels {
   static S strainEnergy(const CableSection& sec, const AlePointArrays& t, const double* q0, const S* u) {
     const Nodes<S> n(q0, u);
     const S iL = 1.0 / n.L;
-    S G[kG][P], GL[kG][P], U(0.0);
+    S G[kG][P], GL[kG][P], U[P];
     kinematics<P>(t, n, iL, G, GL);
     for (int g = 0; g < P; ++g) {
       S Gg[kG];
       for (int k = 0; k < kG; ++k) Gg[k] = G[k][g];
-      U += t.w[g] * energyDensity(sec, Gg);
+      U[g] = t.w[g] * energyDensity(sec, Gg);
     }
-    return n.L * U;
+    return n.L * sum<P>(U);
   }
 
   // The inertial force of the moving material less a load per unit length on it (Moving), or minus
@@ -212,23 +230,24 @@ struct AleCableKernels {
         sp2[g] += (-phiX * t.x[g] * iL + phiL) * ei;
       }
     }
-    S Fp1(0.0), Fp2(0.0);
     for (int g = 0; g < P; ++g) {
-      Fp1 += t.w[g] * sp1[g];
-      Fp2 += t.w[g] * sp2[g];
+      sp1[g] *= t.w[g];
+      sp2[g] *= t.w[g];
     }
+    const S Fp1 = sum<P>(sp1), Fp2 = sum<P>(sp2);
     for (int i = 0; i < D; ++i) {
-      S fx1(0.0), fx2(0.0), f1(0.0), f2(0.0);
+      S tx1[P], tx2[P], t1[P], t2[P];
       for (int g = 0; g < P; ++g) {
-        fx1 += t.w[g] * t.h[0][g] * e[i][g];
-        fx2 += t.w[g] * t.h[2][g] * e[i][g];
-        f1 += t.w[g] * t.h[1][g] * e[i][g];
-        f2 += t.w[g] * t.h[3][g] * e[i][g];
+        const S we = t.w[g] * e[i][g];
+        tx1[g] = t.h[0][g] * we;
+        tx2[g] = t.h[2][g] * we;
+        t1[g] = t.h[1][g] * we;
+        t2[g] = t.h[3][g] * we;
       }
-      F[kX1 + i] = n.L * fx1;
-      F[kX2 + i] = n.L * fx2;
-      F[kS1 + i] = n.L * n.L * f1;
-      F[kS2 + i] = n.L * n.L * f2;
+      F[kX1 + i] = n.L * sum<P>(tx1);
+      F[kX2 + i] = n.L * sum<P>(tx2);
+      F[kS1 + i] = n.L * n.L * sum<P>(t1);
+      F[kS2 + i] = n.L * n.L * sum<P>(t2);
       F[kP1 + i] = F[kP2 + i] = S(0.0);  // the padding of the material blocks
     }
     F[kP1] = n.L * Fp1;
@@ -250,9 +269,8 @@ struct AleCableKernels {
         const S rd = Nv + phiX * xid[g] + phiL * Ldot;
         rd2[g] += rd * rd;
       }
-    S T(0.0);
-    for (int g = 0; g < P; ++g) T += t.w[g] * rd2[g];
-    return 0.5 * rhoA * n.L * T;
+    for (int g = 0; g < P; ++g) rd2[g] *= t.w[g];
+    return 0.5 * rhoA * n.L * sum<P>(rd2);
   }
 };
 

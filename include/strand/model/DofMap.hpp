@@ -48,6 +48,8 @@ public:
   const std::vector<PetscInt>& couplingOffset() const { return _cplOffset; }
   const std::vector<PetscInt>& couplingLocalBlocks() const { return _cplLocal; }
   const std::vector<PetscInt>& couplingGlobalBlocks() const { return _cplGlobal; }
+  // per ghosted-local block: 1 when a coupling of the model (rigid body, joint, contact) holds it
+  const std::vector<char>& coupledLocal() const { return _coupledLocal; }
   // ghosted-local index of a global block, or -1 when this rank neither owns nor ghosts it
   PetscInt localBlock(PetscInt globalBlock) const;
 
@@ -69,6 +71,7 @@ private:
   std::vector<LocalGroup> _localGroups;
   std::vector<int> _localCouplings;
   std::vector<PetscInt> _cplOffset, _cplLocal, _cplGlobal;
+  std::vector<char> _coupledLocal;
   std::vector<PetscInt> _dnnz, _onnz;  // block preallocation of owned block rows
   // the vector createVector() duplicates, made on first use; shared by copies of the map
   mutable std::shared_ptr<std::remove_pointer_t<Vec>> _prototype;
