@@ -511,19 +511,22 @@ PetscErrorCode Assembler::massMatrixAt(Vec X, Mat M, bool maskSupports) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Assembler::variableKineticEnergy(Vec X, Vec V, PetscReal* T) {
+PetscErrorCode Assembler::variableKineticEnergy(Vec X, Vec V, PetscReal* T, PetscReal* loadPower) {
   PetscFunctionBeginUser;
   *T = 0.0;
+  if (loadPower) *loadPower = 0.0;
   if (!hasVariableMass()) PetscFunctionReturn(0);
   LocalRead x, v;
   PetscCall(beginLocal(X, _xWork, &x));
   PetscCall(beginLocal(V, _vWork, &v));
-  double local = 0.0;
-  for (const auto& f : _families) local += f->kineticEnergy(x.a, v.a);
-  local += _reels->kineticEnergy(x.a, v.a);
+  double local[2] = {0.0, 0.0}, global[2];
+  for (const auto& f : _families) local[0] += f->kineticEnergy(x.a, v.a, loadPower ? &local[1] : nullptr);
+  local[0] += _reels->kineticEnergy(x.a, v.a);
   PetscCall(endLocal(&x));
   PetscCall(endLocal(&v));
-  PetscCallMPI(MPI_Allreduce(&local, T, 1, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
+  PetscCallMPI(MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_SUM, _dofs.comm()));
+  *T = global[0];
+  if (loadPower) *loadPower = global[1];
   PetscFunctionReturn(0);
 }
 

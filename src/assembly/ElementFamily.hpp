@@ -47,8 +47,9 @@ public:
                                    double* r) const = 0;
   // M += M(x) (the consistent start's mass).
   virtual PetscErrorCode massAt(const double* x, Mat M, const std::vector<char>& fixed) const = 0;
-  // 1/2 v^T M(x) v.
-  virtual double kineticEnergy(const double* x, const double* v) const = 0;
+  // 1/2 v^T M(x) v; with loadPower, *loadPower += v . Q(x) of the configuration-dependent loads
+  // (unscaled) in the same pass.
+  virtual double kineticEnergy(const double* x, const double* v, double* loadPower = nullptr) const = 0;
 
   // Kinds whose distributed loads depend on the coordinates (K::kConfigurationLoads: the ALE kinds'
   // load on the material between their nodes): r += Q(x), unscaled (the energy balance counts its

@@ -255,17 +255,20 @@ public:
     PetscFunctionReturn(0);
   }
 
-  double kineticEnergy(const double* x, const double* v) const override {
+  double kineticEnergy(const double* x, const double* v, double* loadPower) const override {
     double T = 0.0;
     if constexpr (!K::kConstantMass) {
-      double u[N], q0[N], ve[N];
+      static_assert(K::kConfigurationLoads, "an M(q) kind's load power rides with its kinetic energy");
+      double u[N], q0[N], ve[N], P = 0.0;
       for (int k = 0; k < _local.size(); ++k) {
         gather(k, x, u, q0);
         gatherVelocity(k, v, ve);
         T += K::kineticEnergy(perBody(k).kernel, q0, u, ve);
+        if (loadPower) P += K::loadPower(perBody(k).kernel, q0, u, ve, loadPerLength(k));
       }
+      if (loadPower) *loadPower += P;
     } else {
-      (void)x, (void)v;
+      (void)x, (void)v, (void)loadPower;
     }
     return T;
   }

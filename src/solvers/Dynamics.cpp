@@ -466,11 +466,13 @@ PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, P
     PetscCall(VecSet(_w1, 0.0));
     PetscCall(_asm.addTimedLoads(t, _w1, 1.0));
     if (_asm.model().hasLoadFunction()) PetscCall(VecAXPY(_w1, _asm.model().loadFactor(t), _fext));
-    if (_configurationLoads) {
+    if (_configurationLoads && !_configurationPowerReady) {
       PetscCall(_asm.configurationLoads(X, _w2));
       PetscCall(VecAXPY(_w1, _asm.model().loadFactor(t), _w2));
     }
     PetscCall(VecDot(_w1, V, load));
+    if (_configurationLoads && _configurationPowerReady) *load += _asm.model().loadFactor(t) * _configurationPower;
+    _configurationPowerReady = false;
   }
   if (_damped) {
     PetscCall(_asm.residual(X, V, t, _w1, assembly::SupportRows::Reaction));
@@ -513,10 +515,11 @@ PetscErrorCode Dynamics::energies(Vec X, Vec V, DynamicsStep* s) {
   PetscCall(MatMult(_M, V, _w1));
   PetscCall(VecDot(_w1, V, &vmv));
   s->kinetic = 0.5 * vmv;
-  if (_variableMass) {
+  if (_variableMass) {  // and the configuration loads' power v . Q(X) in the same pass, for powers()
     PetscReal T;
-    PetscCall(_asm.variableKineticEnergy(X, V, &T));
+    PetscCall(_asm.variableKineticEnergy(X, V, &T, _configurationLoads ? &_configurationPower : nullptr));
     s->kinetic += T;
+    _configurationPowerReady = _configurationLoads;
   }
   PetscCall(_asm.strainEnergy(X, &s->strain));
   PetscCall(VecDot(_fext, X, &fu));

@@ -150,6 +150,19 @@ TYPED_TEST(AleCableTest, InertiaLessLoadIsTheInertiaLessTheDistributedLoad) {
   for (int k = 0; k < N; ++k) EXPECT_NEAR(both[k], F[k] - Q[k], 1e-14 * s) << "entry " << k;
 }
 
+// The energy monitor's load power from the material velocity: loadPower = v . Q_f.
+TYPED_TEST(AleCableTest, LoadPowerIsTheVelocitiesDotTheDistributedLoad) {
+  constexpr int D = TypeParam::value;
+  using E = AleCable<D>;
+  constexpr int N = E::kDof;
+  Fixture<D> fx;
+  const double load[3] = {0.3, -9.81, D == 3 ? 1.7 : 0.0};
+  double Q[N], vQ = 0.0;
+  E::distributedLoad(fx.body, fx.q0, fx.u, load, Q);
+  for (int k = 0; k < N; ++k) vQ += fx.v[k] * Q[k];
+  EXPECT_NEAR(E::loadPower(fx.body, fx.q0, fx.u, fx.v, load), vQ, 1e-13 * maxAbs(Q, N) * maxAbs(fx.v, N));
+}
+
 TYPED_TEST(AleCableTest, WithTheMaterialCoordinatesHeldItIsTheLagrangianCable) {
   constexpr int D = TypeParam::value;
   using E = AleCable<D>;

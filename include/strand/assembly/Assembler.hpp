@@ -102,8 +102,9 @@ public:
   PetscErrorCode inertiaJacobian(Vec X, Vec V, Vec A, PetscReal shiftV, PetscReal shiftA, Mat J);
   // The mass at X: massMatrix() plus M(X) of the variable-mass kinds (the consistent start).
   PetscErrorCode massMatrixAt(Vec X, Mat M, bool maskSupports = true);
-  // 1/2 V^T M(X) V of the variable-mass kinds (all ranks; 0 without them).
-  PetscErrorCode variableKineticEnergy(Vec X, Vec V, PetscReal* T);
+  // 1/2 V^T M(X) V of the variable-mass kinds (all ranks; 0 without them); with loadPower, also
+  // V . configurationLoads(X) in the same pass (the power of their unscaled loads).
+  PetscErrorCode variableKineticEnergy(Vec X, Vec V, PetscReal* T, PetscReal* loadPower = nullptr);
   // The constant applied loads f_ext (gravity, distributed and nodal forces) at the reference state,
   // on every row, supported ones included; nodal moments are evaluated there too (they follow the
   // slope, so they are not constant).

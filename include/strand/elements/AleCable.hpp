@@ -226,6 +226,13 @@ public:
     return Kernels::template kineticEnergy<4>(b.section.rhoA, b.inertialPoints, q0, u, v);
   }
 
+  // v . Q_f of a force per unit length f on the material (distributedLoad), from the material
+  // velocity: int rdot . f dp.
+  template <class S>
+  static S loadPower(const Body& b, const double* q0, const S* u, const S* v, const double* f) {
+    return Kernels::template loadPower<4>(b.inertialPoints, q0, u, v, f);
+  }
+
   // The inertia's derivatives: M = dF/da, C = dF/dv, Kq = dF/du (row-major kDof x kDof); F optional.
   static void inertiaTangent(const Body& b, const Element& e, const double* q0, const double* u, const double* v,
                              const double* a, double* F, double* M, double* C, double* Kq) {

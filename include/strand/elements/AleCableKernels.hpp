@@ -254,23 +254,48 @@ struct AleCableKernels {
     F[kP2] = n.L * Fp2;
   }
 
-  // T = 1/2 rhoA L sum_g w_g |rdot_g|^2, rdot = N v + phi_xi xidot + phi_L Ldot.
+  // The material velocity at the points: rdot = N v + phi_xi xidot + phi_L Ldot (= S qdot).
   template <int P, class S>
-  static S kineticEnergy(double rhoA, const AlePointArrays& t, const double* q0, const S* u, const S* v) {
-    const Nodes<S> n(q0, u);
+  static void materialVelocity(const AlePointArrays& t, const Nodes<S>& n, const S* v, S rd[D][P]) {
     const S iL = 1.0 / n.L, Ldot = v[kP2] - v[kP1];
-    S xid[P], rd2[P];
-    for (int g = 0; g < P; ++g) xid[g] = -(v[kP1] + t.x[g] * Ldot) * iL, rd2[g] = S(0.0);
+    S xid[P];
+    for (int g = 0; g < P; ++g) xid[g] = -(v[kP1] + t.x[g] * Ldot) * iL;
     for (int i = 0; i < D; ++i)
       for (int g = 0; g < P; ++g) {
         const S phiX = t.dh[2][g] * n.chord[i] + n.L * (t.dh[1][g] * n.s1[i] + t.dh[3][g] * n.s2[i]);
         const S phiL = t.h[1][g] * n.s1[i] + t.h[3][g] * n.s2[i];
         const S Nv = t.h[0][g] * v[kX1 + i] + t.h[2][g] * v[kX2 + i] + n.L * (t.h[1][g] * v[kS1 + i] + t.h[3][g] * v[kS2 + i]);
-        const S rd = Nv + phiX * xid[g] + phiL * Ldot;
-        rd2[g] += rd * rd;
+        rd[i][g] = Nv + phiX * xid[g] + phiL * Ldot;
       }
-    for (int g = 0; g < P; ++g) rd2[g] *= t.w[g];
+  }
+
+  // T = 1/2 rhoA L sum_g w_g |rdot_g|^2.
+  template <int P, class S>
+  static S kineticEnergy(double rhoA, const AlePointArrays& t, const double* q0, const S* u, const S* v) {
+    const Nodes<S> n(q0, u);
+    S rd[D][P], rd2[P];
+    materialVelocity<P>(t, n, v, rd);
+    for (int g = 0; g < P; ++g) {
+      rd2[g] = rd[0][g] * rd[0][g];
+      for (int i = 1; i < D; ++i) rd2[g] += rd[i][g] * rd[i][g];
+      rd2[g] *= t.w[g];
+    }
     return 0.5 * rhoA * n.L * sum<P>(rd2);
+  }
+
+  // The power of a load per unit length on the moving material, v . Q_f = L sum_g w_g rdot_g . load
+  // (Q_f = int S^T load dp and S v = rdot).
+  template <int P, class S>
+  static S loadPower(const AlePointArrays& t, const double* q0, const S* u, const S* v, const double* load) {
+    const Nodes<S> n(q0, u);
+    S rd[D][P], p[P];
+    materialVelocity<P>(t, n, v, rd);
+    for (int g = 0; g < P; ++g) {
+      p[g] = rd[0][g] * load[0];
+      for (int i = 1; i < D; ++i) p[g] += rd[i][g] * load[i];
+      p[g] *= t.w[g];
+    }
+    return n.L * sum<P>(p);
   }
 };
 

@@ -178,6 +178,10 @@ private:
   bool _damped = false, _moving = false, _constrained = false;
   bool _variableMass = false;  // kinds with M(q): their inertia in the residual (Assembler::addInertia)
   bool _configurationLoads = false;  // loads Q(q) (the ALE kinds'): counted by their work, not in _fext
+  // v . Q(X) of the configuration-dependent loads from energies(), for the powers() that follow it
+  // at the same state (one element pass for both)
+  PetscReal _configurationPower = 0.0;
+  bool _configurationPowerReady = false;
   bool _firstOrder = false, _explicit = false;  // StateSpace form; RK4 / ABM4
   bool _ownAlpha = false;                        // run() integrates with our strand_alpha TS
   std::string _schemeName;
