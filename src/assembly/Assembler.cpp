@@ -80,7 +80,17 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
   for (int k = 0; k < static_cast<int>(model.prescribedCoordinates().size()); ++k) {
     const int dof = model.prescribedCoordinates()[k].dof;
     const PetscInt lb = dofs.localBlock(dofs.globalBlock()[dof / bs]);
-    if (lb >= 0 && lb < dofs.ownedBlocks()) _movedCoordinates.push_back({lb * bs + dof % bs, k});
+    if (lb < 0 || lb >= dofs.ownedBlocks()) continue;
+    const model::TimeFunction& f = model.prescribedCoordinates()[k].function;
+    const auto same = [&](const model::TimeFunction* g) {
+      return g->kind == f.kind && g->value == f.value && g->rate == f.rate && g->start == f.start &&
+             g->end == f.end && g->amplitude == f.amplitude && g->frequency == f.frequency && g->phase == f.phase &&
+             g->omega == f.omega && g->duration == f.duration && g->times == f.times && g->values == f.values;
+    };
+    auto it = std::find_if(_movedFunctions.begin(), _movedFunctions.end(), same);
+    if (it == _movedFunctions.end()) it = _movedFunctions.insert(_movedFunctions.end(), &f);
+    _movedCoordinates.push_back({lb * bs + dof % bs, static_cast<int>(it - _movedFunctions.begin()),
+                                 model.prescribedCoordinates()[k].scale});
   }
   for (const model::DofMap::LocalGroup& local : dofs.localGroups())
     _families.push_back(makeElementFamily(model, dofs, local, _q0Local));
@@ -549,19 +559,22 @@ PetscErrorCode Assembler::prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) con
     }
   }
   // a coordinate may be moved by several functions (an ALE node between two material_nodes): sums
-  for (const auto& [owned, k] : _movedCoordinates) {
-    if (x) x[owned] = 0.0;
-    if (v) v[owned] = 0.0;
-    if (a) a[owned] = 0.0;
+  for (const MovedCoordinate& m : _movedCoordinates) {
+    if (x) x[m.owned] = 0.0;
+    if (v) v[m.owned] = 0.0;
+    if (a) a[m.owned] = 0.0;
   }
-  for (const auto& [owned, k] : _movedCoordinates) {
-    // the scene's angle is the one at t = 0: phi = angle + f(t) - f(0) (user-guide, "Turning hubs")
-    const model::TimeFunction& function = _model.prescribedCoordinates()[k].function;
-    const double s = _model.prescribedCoordinates()[k].scale;
-    const model::TimeValue f = function.at(t);
-    if (x) x[owned] += s * (f.f - function.at(0.0).f);
-    if (v) v[owned] += s * f.df;
-    if (a) a[owned] += s * f.ddf;
+  // the scene's angle is the one at t = 0: phi = angle + f(t) - f(0) (user-guide, "Turning hubs")
+  std::vector<model::TimeValue> f(_movedFunctions.size());
+  for (size_t k = 0; k < f.size(); ++k) {
+    f[k] = _movedFunctions[k]->at(t);
+    f[k].f -= _movedFunctions[k]->at(0.0).f;
+  }
+  for (const MovedCoordinate& m : _movedCoordinates) {
+    const model::TimeValue& fk = f[m.function];
+    if (x) x[m.owned] += m.scale * fk.f;
+    if (v) v[m.owned] += m.scale * fk.df;
+    if (a) a[m.owned] += m.scale * fk.ddf;
   }
   if (X) PetscCall(VecRestoreArray(X, &x));
   if (V) PetscCall(VecRestoreArray(V, &v));

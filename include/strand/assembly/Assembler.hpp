@@ -231,7 +231,15 @@ private:
     int hub, block;  // HubMotion and index into its blocks
   };
   std::vector<MovedBlock> _moved;          // owned blocks of hub supports
-  std::vector<std::pair<PetscInt, int>> _movedCoordinates;  // owned index, Model::prescribedCoordinates() index
+  // owned prescribed coordinates: u = scale (f(t) - f(0)) of the function _movedFunctions[function]
+  // (a payout moves every material coordinate of a body by one function: evaluated once per call)
+  struct MovedCoordinate {
+    PetscInt owned;
+    int function;
+    double scale;
+  };
+  std::vector<MovedCoordinate> _movedCoordinates;
+  std::vector<const model::TimeFunction*> _movedFunctions;  // distinct functions
   std::vector<double> _q0Local;            // initial coordinates, ghosted local form
   // the constant nodal forces and the supported DOFs among the owned ones, as lists: the residual
   // and zeroSupportedRows visit these few entries instead of passing over every owned DOF

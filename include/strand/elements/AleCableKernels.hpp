@@ -121,8 +121,9 @@ struct AleCableKernels {
     S c[Cable::kCurv], c2(0.0);
     Cable::cross(G, G + D, c);
     for (int i = 0; i < Cable::kCurv; ++i) c2 += c[i] * c[i];
-    const S eps = 0.5 * (s - 1.0);
-    return 0.5 * sec.EA * eps * eps + 0.5 * sec.EI * c2 / (s * s * s);
+    using std::sqrt;
+    const S eps = 0.5 * (s - 1.0), A = 1.0 / (s * sqrt(s));  // pointForce's s^(-3/2): one root and division for both
+    return 0.5 * sec.EA * eps * eps + 0.5 * sec.EI * c2 * A * A;
   }
 
   // f = dU/dq (+ the damping force at fixed xi, Damped): the slots get L sum w (B1 f_r' + B2 f_r''),
