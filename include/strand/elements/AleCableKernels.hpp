@@ -154,18 +154,19 @@ struct AleCableKernels {
       for (int k = 1; k < kG; ++k) dot += fG[k][g] * GL[k][g];
       tL[g] = t.w[g] * (W[g] + n.L * dot);
     }
-    for (int i = 0; i < D; ++i) {
-      S tx[P], t1[P], t2[P];
-      for (int g = 0; g < P; ++g) {
-        tx[g] = t.w[g] * (t.dh[2][g] * fG[i][g] + t.ddh[2][g] * iL * fG[D + i][g]);
-        t1[g] = t.w[g] * (n.L * t.dh[1][g] * fG[i][g] + t.ddh[1][g] * fG[D + i][g]);
-        t2[g] = t.w[g] * (n.L * t.dh[3][g] * fG[i][g] + t.ddh[3][g] * fG[D + i][g]);
+    S tx[D][P], t1[D][P], t2[D][P];  // the slots' integrands, elementwise over the points
+    for (int g = 0; g < P; ++g)
+      for (int i = 0; i < D; ++i) {
+        tx[i][g] = t.w[g] * (t.dh[2][g] * fG[i][g] + t.ddh[2][g] * iL * fG[D + i][g]);
+        t1[i][g] = t.w[g] * (n.L * t.dh[1][g] * fG[i][g] + t.ddh[1][g] * fG[D + i][g]);
+        t2[i][g] = t.w[g] * (n.L * t.dh[3][g] * fG[i][g] + t.ddh[3][g] * fG[D + i][g]);
       }
-      const S fx = sum<P>(tx);
+    for (int i = 0; i < D; ++i) {
+      const S fx = sum<P>(tx[i]);
       f[kX1 + i] = -fx;
       f[kX2 + i] = fx;
-      f[kS1 + i] = sum<P>(t1);
-      f[kS2 + i] = sum<P>(t2);
+      f[kS1 + i] = sum<P>(t1[i]);
+      f[kS2 + i] = sum<P>(t2[i]);
     }
     const S fL = sum<P>(tL);
     f[kP1] = -fL;
@@ -210,13 +211,14 @@ struct AleCableKernels {
     }
     S e[D][P], sp1[P], sp2[P];  // e = rhoA rddot - load; sp = S_p . e
     for (int g = 0; g < P; ++g) sp1[g] = sp2[g] = S(0.0);
-    for (int i = 0; i < D; ++i) {
-      const double li = load ? load[i] : 0.0;
-      for (int g = 0; g < P; ++g) {
+    double li[D];
+    for (int i = 0; i < D; ++i) li[i] = load ? load[i] : 0.0;
+    for (int g = 0; g < P; ++g) {  // (points outer: the compiler then vectorizes over them)
+      for (int i = 0; i < D; ++i) {
         const S phiXL = t.dh[1][g] * n.s1[i] + t.dh[3][g] * n.s2[i];
         const S phiX = t.dh[2][g] * n.chord[i] + n.L * phiXL;
         const S phiL = t.h[1][g] * n.s1[i] + t.h[3][g] * n.s2[i];
-        S ei = S(-li);
+        S ei = S(-li[i]);
         if constexpr (Moving) {
           const S phiXX = t.ddh[2][g] * n.chord[i] + n.L * (t.ddh[1][g] * n.s1[i] + t.ddh[3][g] * n.s2[i]);
           const S vX = t.dh[2][g] * (v[kX2 + i] - v[kX1 + i]) + n.L * (t.dh[1][g] * v[kS1 + i] + t.dh[3][g] * v[kS2 + i]);
@@ -236,19 +238,20 @@ struct AleCableKernels {
       sp2[g] *= t.w[g];
     }
     const S Fp1 = sum<P>(sp1), Fp2 = sum<P>(sp2);
-    for (int i = 0; i < D; ++i) {
-      S tx1[P], tx2[P], t1[P], t2[P];
-      for (int g = 0; g < P; ++g) {
+    S tx1[D][P], tx2[D][P], t1[D][P], t2[D][P];
+    for (int g = 0; g < P; ++g)
+      for (int i = 0; i < D; ++i) {
         const S we = t.w[g] * e[i][g];
-        tx1[g] = t.h[0][g] * we;
-        tx2[g] = t.h[2][g] * we;
-        t1[g] = t.h[1][g] * we;
-        t2[g] = t.h[3][g] * we;
+        tx1[i][g] = t.h[0][g] * we;
+        tx2[i][g] = t.h[2][g] * we;
+        t1[i][g] = t.h[1][g] * we;
+        t2[i][g] = t.h[3][g] * we;
       }
-      F[kX1 + i] = n.L * sum<P>(tx1);
-      F[kX2 + i] = n.L * sum<P>(tx2);
-      F[kS1 + i] = n.L * n.L * sum<P>(t1);
-      F[kS2 + i] = n.L * n.L * sum<P>(t2);
+    for (int i = 0; i < D; ++i) {
+      F[kX1 + i] = n.L * sum<P>(tx1[i]);
+      F[kX2 + i] = n.L * sum<P>(tx2[i]);
+      F[kS1 + i] = n.L * n.L * sum<P>(t1[i]);
+      F[kS2 + i] = n.L * n.L * sum<P>(t2[i]);
       F[kP1 + i] = F[kP2 + i] = S(0.0);  // the padding of the material blocks
     }
     F[kP1] = n.L * Fp1;
