@@ -389,7 +389,15 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal s
   PetscCall(MatZeroEntries(J));
   if (D) PetscCall(MatZeroEntries(D));
   const double loadFactor = _model.loadFactor(t);
-  for (const auto& f : _families) PetscCall(f->dynamicJacobian(x.a, v.a, loadFactor, shiftV, shiftA, J, D, _fixedLocal));
+  // with A: the variable-mass kinds' inertia in the same element matrices (the reels' below)
+  const bool inertia = A && V && hasVariableMass();
+  LocalRead a;
+  if (inertia) {
+    if (!_aWork) PetscCall(VecDuplicate(_xWork, &_aWork));
+    PetscCall(beginLocal(A, _aWork, &a));
+  }
+  for (const auto& f : _families)
+    PetscCall(f->dynamicJacobian(x.a, v.a, loadFactor, shiftV, shiftA, J, D, _fixedLocal, inertia ? a.a : nullptr));
   PetscCall(_moments->jacobian(x.a, loadFactor, J, _fixedLocal));
   PetscCall(_multibody->jacobian(x.a, _constraintScale, shiftA, loadFactor, J, _fixedLocal));
   PetscCall(PetscLogEventBegin(evContact, 0, 0, 0, 0));
@@ -397,10 +405,7 @@ PetscErrorCode Assembler::dynamicJacobian(Vec X, Vec V, PetscReal t, PetscReal s
   PetscCall(_contacts->pulleyMatrices(shiftV, shiftA, J, D));
   PetscCall(PetscLogEventEnd(evContact, 0, 0, 0, 0));
   PetscCall(_reels->dampingMatrices(shiftV, J, D, _fixedLocal));
-  if (A && V && hasVariableMass()) {
-    LocalRead a;
-    PetscCall(beginLocal(A, _rWork, &a));
-    for (const auto& f : _families) PetscCall(f->inertiaJacobian(x.a, v.a, a.a, shiftV, shiftA, J, _fixedLocal));
+  if (inertia) {
     PetscCall(_reels->inertiaJacobian(x.a, a.a, shiftA, J, _fixedLocal));
     PetscCall(endLocal(&a));
   }

@@ -25,8 +25,11 @@ public:
   // J += K (and the rotating frame's softening -loadFactor Omega^2 M_P).
   virtual PetscErrorCode jacobian(const double* x, double loadFactor, Mat J, const std::vector<char>& fixed) const = 0;
   // J += K + shiftV D + shiftA M (K with the loads' tangent at loadFactor); Dmat (if not null) += D.
+  // With a (and v) for kinds with M(q): their inertia's derivatives too, shiftA M(x) + shiftV dF/dv
+  // + dF/dx (inertiaJacobian's) in the same element matrices.
   virtual PetscErrorCode dynamicJacobian(const double* x, const double* v, double loadFactor, double shiftV,
-                                         double shiftA, Mat J, Mat Dmat, const std::vector<char>& fixed) const = 0;
+                                         double shiftA, Mat J, Mat Dmat, const std::vector<char>& fixed,
+                                         const double* a = nullptr) const = 0;
   // M += the consistent mass with point masses.
   virtual PetscErrorCode mass(Mat M, const std::vector<char>& fixed) const = 0;
   // G += 2 Omega (m (x) [e]x): the Coriolis matrix of the rotating frame.

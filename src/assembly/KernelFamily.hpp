@@ -116,7 +116,7 @@ public:
   // K + shiftV D + shiftA M in one pass over the elements (the Newton matrix of an implicit
   // integrator).
   PetscErrorCode dynamicJacobian(const double* x, const double* v, double loadFactor, double shiftV, double shiftA,
-                                 Mat J, Mat Dmat, const std::vector<char>& fixed) const override {
+                                 Mat J, Mat Dmat, const std::vector<char>& fixed, const double* a) const override {
     PetscFunctionBeginUser;
     double u[N], q0[N], ve[N], Ke[N * N], De[N * N];
     ElementInserter toJ, toD;
@@ -137,6 +137,7 @@ public:
       }
       addMassBlocks(k, shiftA, _identity, Ke);
       addLoadTangent(k, q0, u, loadFactor, Ke);
+      if (a && v) addInertiaTangent(k, q0, u, ve, a, shiftV, shiftA, Ke);
       maskFixed(k, fixed, Ke);
       PetscCall(toJ.add(k, Ke));
     }
@@ -309,6 +310,20 @@ private:
   }
 
   const double* loadPerLength(int k) const { return body(k).loadPerLength.data(); }
+
+  // Ke += shiftA M + shiftV dF/dv + dF/du of an M(q) kind's inertia (K::inertiaTangent); nothing
+  // for the others.
+  void addInertiaTangent(int k, const double* q0, const double* u, const double* ve, const double* a, double shiftV,
+                         double shiftA, double* Ke) const {
+    if constexpr (!K::kConstantMass) {
+      double ae[N], M[N * N], C[N * N], Kq[N * N];
+      gatherVelocity(k, a, ae);
+      K::inertiaTangent(perBody(k).kernel, element(k), q0, u, ve, ae, nullptr, M, C, Kq);
+      for (int i = 0; i < N * N; ++i) Ke[i] += Kq[i] + shiftA * M[i] + shiftV * C[i];
+    } else {
+      (void)k, (void)q0, (void)u, (void)ve, (void)a, (void)shiftV, (void)shiftA, (void)Ke;
+    }
+  }
 
   // Ke -= loadFactor dQ_f/du of a configuration-dependent distributed load (K::kConfigurationLoads).
   void addLoadTangent(int k, const double* q0, const double* u, double loadFactor, double* Ke) const {
