@@ -587,6 +587,17 @@ PetscErrorCode Assembler::prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) con
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode Assembler::moveSupportedRows(Vec R, Vec to) const {
+  PetscFunctionBeginUser;
+  PetscScalar *r, *t;
+  PetscCall(VecGetArray(R, &r));
+  PetscCall(VecGetArray(to, &t));
+  for (PetscInt i : _fixedOwned) t[i] = r[i], r[i] = 0.0;
+  PetscCall(VecRestoreArray(to, &t));
+  PetscCall(VecRestoreArray(R, &r));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Assembler::zeroSupportedRows(Vec R) const {
   PetscFunctionBeginUser;
   PetscScalar* r;

@@ -410,10 +410,11 @@ PetscErrorCode Dynamics::formFunction(TS, PetscReal t, Vec U, Vec V, Vec A, Vec 
   auto* self = static_cast<Dynamics*>(ctx);
   PetscCall(self->dynamicResidual(U, V, A, t, F, assembly::SupportRows::Reaction));
   if (self->_moving) {  // the support force of this state; the last call of a step is at its end
-    PetscCall(VecPointwiseMult(self->_reaction, F, self->_supported));
+    PetscCall(self->_asm.moveSupportedRows(F, self->_reaction));  // (only supported rows: the rest stays 0)
     self->_reactionValid = true;
+  } else {
+    PetscCall(self->_asm.zeroSupportedRows(F));
   }
-  PetscCall(self->_asm.zeroSupportedRows(F));
   PetscFunctionReturn(0);
 }
 

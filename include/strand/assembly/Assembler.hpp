@@ -126,6 +126,8 @@ public:
   PetscErrorCode prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) const;
   // Zeroes the supported rows of R.
   PetscErrorCode zeroSupportedRows(Vec R) const;
+  // to = R and R = 0 on the supported rows (to's other rows untouched): a residual's support force.
+  PetscErrorCode moveSupportedRows(Vec R, Vec to) const;
   // Coriolis matrix G = 2 Omega int rho A N^T [e]x N dx of the rotating frame (skew-symmetric);
   // supported rows and columns are zero. The static residual and Jacobian already contain the
   // centrifugal load and its softening -Omega^2 M_P (Model::rotation()).
