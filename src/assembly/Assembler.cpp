@@ -317,6 +317,7 @@ PetscErrorCode Assembler::assembleResidual(Vec X, Vec V, PetscReal t, PetscReal 
   LocalSum r;
   PetscCall(beginLocal(X, _xWork, &x));
   if (V) PetscCall(beginLocal(V, _vWork, &v));
+  PetscCheck(!A || V, _dofs.comm(), PETSC_ERR_ARG_NULL, "the residual with inertia needs the velocities");
   if (A) {
     if (!_aWork) PetscCall(VecDuplicate(_xWork, &_aWork));
     PetscCall(beginLocal(A, _aWork, &a));

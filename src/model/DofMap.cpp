@@ -199,6 +199,12 @@ DofMap::DofMap(MPI_Comm comm, const Model& model) : _comm(comm), _bs(model.dim()
   for (const Coupling& c : couplings)
     for (int b : c.blocks)
       if (const PetscInt lb = localBlock(_global[b]); lb >= 0) _coupledLocal[lb] = 1;
+  // a body in contact too: its contact Jacobians (PulleyContacts) write whole element blocks as
+  // elements come into contact, also against fixed pulleys (no coupling); the inserter must not
+  // leave any of its blocks out of a matrix's first assembly
+  for (const PulleyContactSet& set : model.contacts())
+    for (int b : model.bodies()[set.body].nodeBlocks)
+      if (const PetscInt lb = localBlock(_global[b]); lb >= 0) _coupledLocal[lb] = 1;
   // 4. exact preallocation of the owned block rows (every rank sees every element)
   std::vector<PetscInt> rowOf(nb, -1), xadj, adj;
   for (int b = 0; b < nb; ++b)

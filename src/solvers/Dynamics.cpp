@@ -46,6 +46,7 @@ Dynamics::Dynamics(assembly::Assembler& assembler, const model::DynamicsDesc& de
   PetscCallAbort(comm, VecDuplicate(_fext, &_a0));
   PetscCallAbort(comm, VecDuplicate(_fext, &_supported));
   PetscCallAbort(comm, VecDuplicate(_fext, &_reaction));
+  PetscCallAbort(comm, VecSet(_reaction, 0.0));  // moveSupportedRows writes the supported rows alone
   PetscCallAbort(comm, VecDuplicate(_fext, &_multipliers));
   PetscCallAbort(comm, assembler.multiplierMask(_multipliers));
   PetscCallAbort(comm, VecDuplicate(_fext, &_notMultiplier));

@@ -48,7 +48,8 @@ public:
   const std::vector<PetscInt>& couplingOffset() const { return _cplOffset; }
   const std::vector<PetscInt>& couplingLocalBlocks() const { return _cplLocal; }
   const std::vector<PetscInt>& couplingGlobalBlocks() const { return _cplGlobal; }
-  // per ghosted-local block: 1 when a coupling of the model (rigid body, joint, contact) holds it
+  // per ghosted-local block: 1 when a coupling of the model (rigid body, joint, contact with a free
+  // pulley) holds it, or it belongs to a body in contact (ElementInserter never leaves it out)
   const std::vector<char>& coupledLocal() const { return _coupledLocal; }
   // ghosted-local index of a global block, or -1 when this rank neither owns nor ghosts it
   PetscInt localBlock(PetscInt globalBlock) const;
