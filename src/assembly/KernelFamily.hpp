@@ -220,17 +220,16 @@ public:
                                  Mat J, const std::vector<char>& fixed) const override {
     PetscFunctionBeginUser;
     if constexpr (!K::kConstantMass) {
-      double u[N], q0[N], ve[N], ae[N], M[N * N], C[N * N], Kq[N * N];
+      double u[N], q0[N], ve[N], Ke[N * N];
       ElementInserter toJ;
       PetscCall(ElementInserter::create(J, _dofs, _local, &toJ, &fixed));
       for (int k = 0; k < _local.size(); ++k) {
         gather(k, x, u, q0);
         gatherVelocity(k, v, ve);
-        gatherVelocity(k, a, ae);
-        K::inertiaTangent(perBody(k).kernel, element(k), q0, u, ve, ae, nullptr, M, C, Kq);
-        for (int i = 0; i < N * N; ++i) Kq[i] += shiftA * M[i] + shiftV * C[i];
-        maskFixed(k, fixed, Kq);
-        PetscCall(toJ.add(k, Kq));
+        for (double& e : Ke) e = 0.0;
+        addInertiaTangent(k, q0, u, ve, a, shiftV, shiftA, Ke);
+        maskFixed(k, fixed, Ke);
+        PetscCall(toJ.add(k, Ke));
       }
     } else {
       (void)x, (void)v, (void)a, (void)shiftV, (void)shiftA, (void)J, (void)fixed;

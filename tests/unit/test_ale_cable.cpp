@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "strand/elements/AleCable.hpp"
 #include "strand/math/Dual.hpp"
@@ -79,25 +80,38 @@ double maxAbs(const double* x, int n) {
 
 }  // namespace
 
-TYPED_TEST(AleCableTest, ElasticTangentIsTheExactDerivativeAndTheForceTheEnergyGradient) {
-  constexpr int D = TypeParam::value;
+// The hand-derived tangent's f and K against the dual-number derivatives of force() and
+// strainEnergy() for `body` at the fixture's state (label: what the failure messages name).
+template <int D>
+void checkElasticDerivatives(const typename AleCable<D>::Body& body, const Fixture<D>& fx, const std::string& label) {
   using E = AleCable<D>;
   constexpr int N = E::kDof;
   using Dl = math::Dual<N>;
-  Fixture<D> fx;
-  const typename E::Element el = E::element(fx.body, nullptr);
+  const typename E::Element el = E::element(body, nullptr);
   double f[N], K[N * N];
-  E::tangent(fx.body, el, fx.q0, fx.u, nullptr, f, K, nullptr);
+  E::tangent(body, el, fx.q0, fx.u, nullptr, f, K, nullptr);
   Dl ud[N], fd[N];
   for (int k = 0; k < N; ++k) ud[k] = Dl::variable(fx.u[k], k);
-  E::force(fx.body, el, fx.q0, ud, static_cast<const Dl*>(nullptr), fd);
-  const Dl U = E::strainEnergy(fx.body, el, fx.q0, ud);
-  double Kad[N * N];
-  for (int r = 0; r < N; ++r)
+  E::force(body, el, fx.q0, ud, static_cast<const Dl*>(nullptr), fd);
+  const Dl U = E::strainEnergy(body, el, fx.q0, ud);
+  double Kad[N * N], fv[N];
+  for (int r = 0; r < N; ++r) {
+    fv[r] = fd[r].v;
     for (int c = 0; c < N; ++c) Kad[r * N + c] = fd[r].d[c];
+  }
   const double sK = maxAbs(Kad, N * N), sF = maxAbs(f, N);
-  for (int k = 0; k < N; ++k) EXPECT_NEAR(f[k], U.d[k], 1e-11 * sF) << "f = dU/du, entry " << k;
-  for (int k = 0; k < N * N; ++k) EXPECT_NEAR(K[k], Kad[k], 1e-11 * sK) << "K entry " << k;
+  for (int k = 0; k < N; ++k) {
+    EXPECT_NEAR(f[k], U.d[k], 1e-11 * sF) << label << "f = dU/du, entry " << k;
+    EXPECT_NEAR(fv[k], U.d[k], 1e-11 * sF) << label << "force() = dU/du, entry " << k;
+    EXPECT_NEAR(f[k], fv[k], 1e-12 * sF) << label << "the tangent's f, entry " << k;
+  }
+  for (int k = 0; k < N * N; ++k) EXPECT_NEAR(K[k], Kad[k], 1e-11 * sK) << label << "K entry " << k;
+}
+
+TYPED_TEST(AleCableTest, ElasticTangentIsTheExactDerivativeAndTheForceTheEnergyGradient) {
+  constexpr int D = TypeParam::value;
+  Fixture<D> fx;
+  checkElasticDerivatives<D>(fx.body, fx, "");
 }
 
 // The force evaluates its points as arrays padded to an even count (AleCableKernels.hpp): every
@@ -105,32 +119,11 @@ TYPED_TEST(AleCableTest, ElasticTangentIsTheExactDerivativeAndTheForceTheEnergyG
 // hand-derived tangent is its derivative.
 TYPED_TEST(AleCableTest, EveryPointCountGivesTheEnergyGradientAndItsTangent) {
   constexpr int D = TypeParam::value;
-  using E = AleCable<D>;
-  constexpr int N = E::kDof;
-  using Dl = math::Dual<N>;
   Fixture<D> fx;
   for (int points = 2; points <= 8; ++points) {
     SectionValues s;
     s.numbers = {{"E", 2e7}, {"A", 1e-3}, {"I", 3e-7}, {"rho", 1000.0}};
-    const typename E::Body body = E::body(s, {0.7, 1.0, points});
-    const typename E::Element el = E::element(body, nullptr);
-    double f[N], K[N * N];
-    E::tangent(body, el, fx.q0, fx.u, nullptr, f, K, nullptr);
-    Dl ud[N], fd[N];
-    for (int k = 0; k < N; ++k) ud[k] = Dl::variable(fx.u[k], k);
-    E::force(body, el, fx.q0, ud, static_cast<const Dl*>(nullptr), fd);
-    const Dl U = E::strainEnergy(body, el, fx.q0, ud);
-    double Kad[N * N], fv[N];
-    for (int r = 0; r < N; ++r) {
-      fv[r] = fd[r].v;
-      for (int c = 0; c < N; ++c) Kad[r * N + c] = fd[r].d[c];
-    }
-    const double sK = maxAbs(Kad, N * N), sF = maxAbs(f, N);
-    for (int k = 0; k < N; ++k) {
-      EXPECT_NEAR(fv[k], U.d[k], 1e-11 * sF) << points << " points, f = dU/du, entry " << k;
-      EXPECT_NEAR(f[k], fv[k], 1e-12 * sF) << points << " points, the tangent's f, entry " << k;
-    }
-    for (int k = 0; k < N * N; ++k) EXPECT_NEAR(K[k], Kad[k], 1e-11 * sK) << points << " points, K entry " << k;
+    checkElasticDerivatives<D>(AleCable<D>::body(s, {0.7, 1.0, points}), fx, std::to_string(points) + " points, ");
   }
 }
 
