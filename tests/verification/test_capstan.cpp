@@ -479,3 +479,49 @@ TEST(Capstan, BristleLawTurnsAFreePulleyAsTheAtwoodMachine) {
   EXPECT_LT(drift, 1e-4 * scale);
   EXPECT_NEAR(turned / drop, 1.0, 2e-2);  // the rope's stretch and sinking: 1e-2
 }
+
+// A rope pinned at the top of a fixed frictionless drum, horizontal, falls onto it. The pinned
+// node's position block is held, and held blocks are left out of the Newton matrix, but not on a
+// body in contact: the drum's contact writes the whole block of element 0 (the pinned node's) once
+// that element touches, which happens steps after the matrix's first assembly (the rope falls
+// x^2 / (2 R) = 2.5 mm onto the drum at x = 0.05 m in about 23 ms). With the held blocks left
+// out, PETSc stopped there with a new nonzero (docs/architecture.md, decision 29). Nothing
+// dissipates (rho_inf 1, no friction): the energy balance with the penalty's stored energy closes.
+TEST(Capstan, RopePinnedOnAFixedDrumFallsOntoItAndConservesEnergy) {
+  Capstan c = capstan(std::acos(-1.0), 0.0, 0.0, 0.05);
+  model::SceneDescription& sc = c.scene;
+  sc.analysis = model::Analysis::Dynamic;
+  sc.loads.nodal.clear();
+  sc.loads.gravity = {0, -9.81, 0};
+  model::BodyDesc& rope = sc.bodies[0];
+  rope.geometry = model::GeometryDesc{};
+  rope.geometry.kind = model::GeometryKind::Line;
+  rope.geometry.start = {0, kR, 0};
+  rope.geometry.end = {1.0, kR, 0};
+  rope.elements = 20;
+  sc.contacts[0].law.stiffness = 1e5;
+  int firstTouch = -1;  // the first step with element 0 pressed onto the drum
+  const StepHook touch = [&](solvers::Problem& p, const solvers::DynamicsStep& st, Vec X, Vec V) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    std::vector<assembly::Assembler::ContactPointOut> pts;
+    PetscCall(p.assembler().contactPoints(X, V, st.time, pts));
+    int mine = 0, any = 0;
+    for (const auto& pt : pts) mine |= pt.element == 0 && pt.state.pressure > 0.0;
+    MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, p.dofs().comm());
+    if (any && firstTouch < 0) firstTouch = static_cast<int>(st.step);
+    PetscFunctionReturn(0);
+  };
+  const DynamicRun r = runDynamics(sc, 5e-4, 0.15, 1.0, model::Integrator::GeneralizedAlpha, 2, touch);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  double scale = 0.0;
+  for (const solvers::DynamicsStep& st : r.steps)
+    scale = std::max({scale, st.kinetic, std::abs(st.potential), std::abs(st.loadWork)});
+  const double drift = energyDrift(r);
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0)
+    std::printf("rope pinned on a fixed drum: element 0 touches at step %d; drift %.2e J of %.4f J\n", firstTouch,
+                drift, scale);
+  EXPECT_GT(firstTouch, 1);  // after the Newton matrix's first assembly
+  EXPECT_LT(drift, 1e-3 * scale);
+}
