@@ -17,6 +17,8 @@
 //   the contact's work counted as load work (docs/user-guide.md, "Energy balance");
 // requirement: the bristle law (elastic stick) gives the same capstan tension while the drum slides,
 //   and, over a free pulley, moves as the Atwood machine with the energy balance closed;
+// requirement: a rope pinned on a fixed drum falls onto it, its pinned element touching after the
+//   Newton matrix's first assembly, with the energy balance closed (the held-block rule, decision 29);
 // requirement: -n 1 and -n 2 give the same tension (this test runs on both).
 #include <gtest/gtest.h>
 
