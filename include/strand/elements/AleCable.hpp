@@ -234,6 +234,10 @@ public:
   }
 
   // The inertia's derivatives: M = dF/da, C = dF/dv, Kq = dF/du (row-major kDof x kDof); F optional.
+  // F = L sum_g w rhoA S^T rddot. The slot columns of S are N_k I_D, and rddot depends on a slot's
+  // velocity and position through one scalar each (Point::RddotDerivatives), so the slot-slot
+  // blocks of M, C and Kq are scalar 4 x 4 matrices times I_D, summed over the points before they
+  // are spread; the p1, p2 rows and columns are D-vectors per point.
   static void inertiaTangent(const Body& b, const Element& e, const double* q0, const double* u, const double* v,
                              const double* a, double* F, double* M, double* C, double* Kq) {
     if (F) inertia(b, e, q0, u, v, a, F);
@@ -241,41 +245,65 @@ public:
     for (int k = 0; k < kDof; ++k) q[k] = q0[k] + u[k];
     for (int k = 0; k < kDof * kDof; ++k) M[k] = C[k] = Kq[k] = 0.0;
     const double L = q[kP2] - q[kP1];
+    double m4[4][4] = {}, c4[4][4] = {}, k4[4][4] = {};  // the slot-slot blocks' scalars
+    const int p[2] = {kP1, kP2};
     for (int g = 0; g < b.inertial.size(); ++g) {
       const double xi = b.inertial.x[g];
       const Point<double> pt(xi, q, v, a, L);
+      const typename Point<double>::RddotDerivatives d = pt.rddotDerivatives(xi);
       const double wr = b.inertial.w[g] * b.section.rhoA, scale = wr * L;
-      // S as columns over the element: s[col][i]
-      double Sc[kDof][D] = {};
+      const double* Sp[2] = {pt.Sp1, pt.Sp2};
+      const double* dRv[2] = {d.v1, d.v2};
+      const double pm[2] = {-1.0, 1.0};  // d L / d p1, d L / d p2
       for (int k = 0; k < 4; ++k)
-        for (int i = 0; i < D; ++i) Sc[slotIndex(k) + i][i] = pt.N[k];
-      for (int i = 0; i < D; ++i) {
-        Sc[kP1][i] = pt.Sp1[i];
-        Sc[kP2][i] = pt.Sp2[i];
-      }
-      // d rdd / dq (D x kDof) and d rdd / dv, and dS/dq applied to rdd (kDof x kDof)
-      double dRq[D][kDof] = {}, dRv[D][kDof] = {}, dSr[kDof][kDof] = {};
-      pt.derivatives(xi, q, v, a, dRq, dRv, dSr);
-      for (int r = 0; r < kDof; ++r)
-        for (int c = 0; c < kDof; ++c) {
-          double m = 0.0, cv = 0.0, kq = 0.0;
-          for (int i = 0; i < D; ++i) {
-            m += Sc[r][i] * Sc[c][i];
-            cv += Sc[r][i] * dRv[i][c];
-            kq += Sc[r][i] * dRq[i][c];
-          }
-          M[r * kDof + c] += scale * m;
-          C[r * kDof + c] += scale * cv;
-          Kq[r * kDof + c] += scale * (kq + dSr[r][c]);
+        for (int l = 0; l < 4; ++l) {
+          m4[k][l] += scale * pt.N[k] * pt.N[l];
+          c4[k][l] += scale * pt.N[k] * d.cv[l];
+          k4[k][l] += scale * pt.N[k] * d.kq[l];
         }
-      // the factor L: dF/dp = +- w rho A S^T rdd
-      for (int r = 0; r < kDof; ++r) {
-        double sr = 0.0;
-        for (int i = 0; i < D; ++i) sr += Sc[r][i] * pt.rdd[i];
-        Kq[r * kDof + kP2] += wr * sr;
-        Kq[r * kDof + kP1] -= wr * sr;
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < D; ++i) {
+          const int r = slotIndex(k) + i;
+          const double sN = scale * pt.N[k];
+          for (int j = 0; j < 2; ++j) {
+            // slot rows, p columns
+            M[r * kDof + p[j]] += sN * Sp[j][i];
+            C[r * kDof + p[j]] += sN * dRv[j][i];
+            Kq[r * kDof + p[j]] += pm[j] * (sN * d.L[i] + wr * pt.N[k] * pt.rdd[i]);  // + the factor L
+            // p rows, slot columns
+            M[p[j] * kDof + r] += scale * Sp[j][i] * pt.N[k];
+            C[p[j] * kDof + r] += scale * Sp[j][i] * d.cv[k];
+            Kq[p[j] * kDof + r] += scale * Sp[j][i] * d.kq[k];
+          }
+        }
+      for (int j = 0; j < 2; ++j) {
+        double SpRdd = 0.0;
+        for (int i = 0; i < D; ++i) SpRdd += Sp[j][i] * pt.rdd[i];
+        for (int jj = 0; jj < 2; ++jj) {
+          double mm = 0.0, cc = 0.0, kk = 0.0;
+          for (int i = 0; i < D; ++i) {
+            mm += Sp[j][i] * Sp[jj][i];
+            cc += Sp[j][i] * dRv[jj][i];
+            kk += Sp[j][i] * d.L[i];
+          }
+          M[p[j] * kDof + p[jj]] += scale * mm;
+          C[p[j] * kDof + p[jj]] += scale * cc;
+          Kq[p[j] * kDof + p[jj]] += pm[jj] * (scale * kk + wr * SpRdd);  // + the factor L
+        }
       }
+      // dS/dq applied to rddot: the columns' own derivatives
+      double sr[D];
+      for (int i = 0; i < D; ++i) sr[i] = scale * pt.rdd[i];
+      pt.columnDerivatives(xi, sr, reinterpret_cast<double (*)[kDof]>(Kq));
     }
+    for (int k = 0; k < 4; ++k)
+      for (int l = 0; l < 4; ++l)
+        for (int i = 0; i < D; ++i) {
+          const int at = (slotIndex(k) + i) * kDof + slotIndex(l) + i;
+          M[at] += m4[k][l];
+          C[at] += c4[k][l];
+          Kq[at] += k4[k][l];
+        }
   }
 
   // ---- distributed loads: a force per unit length f on the moving material ----
@@ -381,8 +409,8 @@ private:
   };
 
   // One material point xi of the element: its velocity and acceleration (seed 000 Eq. 13-17), the
-  // columns S_p1, S_p2 of S = d rdot / d qdot, and (derivatives()) the exact derivatives of rddot
-  // and of S^T rddot.
+  // columns S_p1, S_p2 of S = d rdot / d qdot, and the exact derivatives of rddot
+  // (rddotDerivatives()) and of S's columns (columnDerivatives()).
   template <class S>
   struct Point {
     S N[4], Nx[4], Nxx[4], NL[4], NxL[4];  // shape values and their xi / L derivatives per cable slot
@@ -430,10 +458,18 @@ private:
       }
     }
 
-    // dRq = d rdd / d q (incl. p1, p2 through L), dRv = d rdd / d v, dSr[r][c] = d(S_r . rdd)/d q_c
-    // with rdd held: the derivative of the columns of S.
-    void derivatives(double xi, const double* q, const double*, const double*, double dRq[D][kDof],
-                     double dRv[D][kDof], double dSr[kDof][kDof]) const {
+    // The derivatives of rddot: in a slot's position q_(k,j) and velocity v_(k,j), e_j kq[k] and
+    // e_j cv[k] (rddot is linear in the slots through phi_xi, phi_xixi, phi_L, phi_xiL); in L (p2: +,
+    // p1: -) at fixed q, v, a, the vector L; in the material velocities v_p1, v_p2, v1 and v2.
+    struct RddotDerivatives {
+      double kq[4], cv[4], L[D], v1[D], v2[D];
+    };
+    RddotDerivatives rddotDerivatives(double xi) const {
+      RddotDerivatives d;
+      for (int k = 0; k < 4; ++k) {
+        d.kq[k] = Nx[k] * xidd + NL[k] * Lddot + Nxx[k] * xid * xid + 2.0 * NxL[k] * xid * Ldot;
+        d.cv[k] = 2.0 * Nx[k] * xid + 2.0 * NL[k] * Ldot;
+      }
       // d xid/dL = -xid/L; d xidd/dL = -xidd/L + 2 Ldot xid / L^2
       const double dxidL = -xid / L, dxiddL = -xidd / L + 2.0 * Ldot * xid / (L * L);
       // velocity derivatives of xid, xidd
@@ -441,25 +477,15 @@ private:
       const double dxidd1 = -(2.0 * Ldot * dxid1 - 2.0 * xid) / L;
       const double dxidd2 = -(2.0 * Ldot * dxid2 + 2.0 * xid) / L;
       for (int i = 0; i < D; ++i) {
-        // cable slots: rdd is linear in q through phi_X, phi_XX, phi_L, phi_XL
-        for (int k = 0; k < 4; ++k) {
-          const int c = slotIndex(k) + i;
-          dRq[i][c] = Nx[k] * xidd + NL[k] * Lddot + Nxx[k] * xid * xid + 2.0 * NxL[k] * xid * Ldot;
-          dRv[i][c] = 2.0 * Nx[k] * xid + 2.0 * NL[k] * Ldot;
-        }
-        // L (p2 = +, p1 = -): d rdd / dL at fixed q, v, a
-        const double drdL = aL[i] + phiXL[i] * xidd + phiX[i] * dxiddL + 2.0 * vXL[i] * xid + 2.0 * vX[i] * dxidL +
-                            phiXXL[i] * xid * xid + 2.0 * phiXX[i] * xid * dxidL + 2.0 * phiXL[i] * Ldot * dxidL;
-        dRq[i][kP2] += drdL;
-        dRq[i][kP1] -= drdL;
+        d.L[i] = aL[i] + phiXL[i] * xidd + phiX[i] * dxiddL + 2.0 * vXL[i] * xid + 2.0 * vX[i] * dxidL +
+                 phiXXL[i] * xid * xid + 2.0 * phiXX[i] * xid * dxidL + 2.0 * phiXL[i] * Ldot * dxidL;
         // v_p1, v_p2 (Ldot: -1, +1)
-        dRv[i][kP1] = phiX[i] * dxidd1 + 2.0 * vX[i] * dxid1 - 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid1 +
-                      2.0 * phiXL[i] * (dxid1 * Ldot - xid);
-        dRv[i][kP2] = phiX[i] * dxidd2 + 2.0 * vX[i] * dxid2 + 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid2 +
-                      2.0 * phiXL[i] * (dxid2 * Ldot + xid);
+        d.v1[i] = phiX[i] * dxidd1 + 2.0 * vX[i] * dxid1 - 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid1 +
+                  2.0 * phiXL[i] * (dxid1 * Ldot - xid);
+        d.v2[i] = phiX[i] * dxidd2 + 2.0 * vX[i] * dxid2 + 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid2 +
+                  2.0 * phiXL[i] * (dxid2 * Ldot + xid);
       }
-      columnDerivatives(xi, rdd, dSr);
-      (void)q;
+      return d;
     }
 
     // dSw[r][c] += d(S_r . w)/d q_c with w held: the derivatives of the columns of S, the cable
