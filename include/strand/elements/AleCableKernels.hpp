@@ -143,7 +143,7 @@ struct AleCableKernels {
   //   L f_G . G_L = -d . (h2' f_r' + h2'' f_r'' / L) - f_r'' . r''
   // (G_L = (-h2' d, -(h2'' d + L r'') / L) / L), whose first term is the chord force's integrand:
   //   dU/dL = sum w (W - f_r'' . r'') - d . f_chord,
-  // so that G_L is formed only for the damping's rates (forming it took 18 % of the force's time).
+  // so that G_L is formed only for the damping's rates.
   template <int P, bool Damped, class S>
   [[gnu::noinline]] static void force(const CableSection& sec, const AlePointArrays& t, const double* q0, const S* u,
                                       const S* v, S* f) {
@@ -196,7 +196,7 @@ struct AleCableKernels {
   }
 
   // U = L sum_g w_g W_g, energyDensity's W elementwise over the points (|kappa|^2 = |r' x r''|^2 / s^3
-  // without a root; point by point the loop stayed scalar, 1.5x the time).
+  // without a root; point by point, through energyDensity, the loop stayed scalar).
   template <int P, class S>
   static S strainEnergy(const CableSection& sec, const AlePointArrays& t, const double* q0, const S* u) {
     const Nodes<S> n(q0, u);
