@@ -253,7 +253,7 @@ public:
       const typename Point<double>::RddotDerivatives d = pt.rddotDerivatives(xi);
       const double wr = b.inertial.w[g] * b.section.rhoA, scale = wr * L;
       const double* Sp[2] = {pt.Sp1, pt.Sp2};
-      const double* dRv[2] = {d.v1, d.v2};
+      const double* dRv[2] = {d.byV1, d.byV2};
       const double pm[2] = {-1.0, 1.0};  // d L / d p1, d L / d p2
       for (int k = 0; k < 4; ++k)
         for (int l = 0; l < 4; ++l) {
@@ -269,7 +269,7 @@ public:
             // slot rows, p columns
             M[r * kDof + p[j]] += sN * Sp[j][i];
             C[r * kDof + p[j]] += sN * dRv[j][i];
-            Kq[r * kDof + p[j]] += pm[j] * (sN * d.L[i] + wr * pt.N[k] * pt.rdd[i]);  // + the factor L
+            Kq[r * kDof + p[j]] += pm[j] * (sN * d.byL[i] + wr * pt.N[k] * pt.rdd[i]);  // + the factor L
             // p rows, slot columns
             M[p[j] * kDof + r] += scale * Sp[j][i] * pt.N[k];
             C[p[j] * kDof + r] += scale * Sp[j][i] * d.cv[k];
@@ -284,7 +284,7 @@ public:
           for (int i = 0; i < D; ++i) {
             mm += Sp[j][i] * Sp[jj][i];
             cc += Sp[j][i] * dRv[jj][i];
-            kk += Sp[j][i] * d.L[i];
+            kk += Sp[j][i] * d.byL[i];
           }
           M[p[j] * kDof + p[jj]] += scale * mm;
           C[p[j] * kDof + p[jj]] += scale * cc;
@@ -460,9 +460,9 @@ private:
 
     // The derivatives of rddot: in a slot's position q_(k,j) and velocity v_(k,j), e_j kq[k] and
     // e_j cv[k] (rddot is linear in the slots through phi_xi, phi_xixi, phi_L, phi_xiL); in L (p2: +,
-    // p1: -) at fixed q, v, a, the vector L; in the material velocities v_p1, v_p2, v1 and v2.
+    // p1: -) at fixed q, v, a, byL; in the material velocities v_p1, v_p2, byV1 and byV2.
     struct RddotDerivatives {
-      double kq[4], cv[4], L[D], v1[D], v2[D];
+      double kq[4], cv[4], byL[D], byV1[D], byV2[D];
     };
     RddotDerivatives rddotDerivatives(double xi) const {
       RddotDerivatives d;
@@ -477,12 +477,12 @@ private:
       const double dxidd1 = -(2.0 * Ldot * dxid1 - 2.0 * xid) / L;
       const double dxidd2 = -(2.0 * Ldot * dxid2 + 2.0 * xid) / L;
       for (int i = 0; i < D; ++i) {
-        d.L[i] = aL[i] + phiXL[i] * xidd + phiX[i] * dxiddL + 2.0 * vXL[i] * xid + 2.0 * vX[i] * dxidL +
+        d.byL[i] = aL[i] + phiXL[i] * xidd + phiX[i] * dxiddL + 2.0 * vXL[i] * xid + 2.0 * vX[i] * dxidL +
                  phiXXL[i] * xid * xid + 2.0 * phiXX[i] * xid * dxidL + 2.0 * phiXL[i] * Ldot * dxidL;
         // v_p1, v_p2 (Ldot: -1, +1)
-        d.v1[i] = phiX[i] * dxidd1 + 2.0 * vX[i] * dxid1 - 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid1 +
+        d.byV1[i] = phiX[i] * dxidd1 + 2.0 * vX[i] * dxid1 - 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid1 +
                   2.0 * phiXL[i] * (dxid1 * Ldot - xid);
-        d.v2[i] = phiX[i] * dxidd2 + 2.0 * vX[i] * dxid2 + 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid2 +
+        d.byV2[i] = phiX[i] * dxidd2 + 2.0 * vX[i] * dxid2 + 2.0 * vL[i] + 2.0 * phiXX[i] * xid * dxid2 +
                   2.0 * phiXL[i] * (dxid2 * Ldot + xid);
       }
       return d;

@@ -210,9 +210,9 @@ struct AleCableKernels {
         const S c = G[0][g] * G[3][g] - G[1][g] * G[2][g];
         c2[g] = c * c;
       } else {
-        const S c0 = G[1][g] * G[5][g] - G[2][g] * G[4][g], c1 = G[2][g] * G[3][g] - G[0][g] * G[5][g],
-                c3 = G[0][g] * G[4][g] - G[1][g] * G[3][g];
-        c2[g] = c0 * c0 + c1 * c1 + c3 * c3;
+        const S cx = G[1][g] * G[5][g] - G[2][g] * G[4][g], cy = G[2][g] * G[3][g] - G[0][g] * G[5][g],
+                cz = G[0][g] * G[4][g] - G[1][g] * G[3][g];
+        c2[g] = cx * cx + cy * cy + cz * cz;
       }
     }
     for (int g = 0; g < P; ++g) {
