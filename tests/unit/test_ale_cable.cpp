@@ -388,3 +388,10 @@ TYPED_TEST(AleCableTest, DampingActsOnTheMaterialStrainRates) {
     for (int k = 0; k < N; ++k) EXPECT_NEAR(fd[k], f0[k], 1e-10 * maxAbs(f0, N)) << "entry " << k;
   }
 }
+
+// The point arrays hold at most 8 points (the scene reader allows 2-8): more is an error, not an
+// overrun.
+TEST(AlePointArrays, RefuseMoreThanEightPoints) {
+  EXPECT_NO_THROW(AlePointArrays::of(math::gaussLegendre(8)));
+  EXPECT_THROW(AlePointArrays::of(math::gaussLegendre(9)), std::invalid_argument);
+}

@@ -11,6 +11,7 @@
 // gather does the same).
 #pragma once
 #include <cmath>
+#include <stdexcept>
 
 #include "strand/elements/AncfCable.hpp"
 #include "strand/math/Gauss.hpp"
@@ -26,6 +27,7 @@ struct AlePointArrays {
   double x[kMax], w[kMax], h[4][kMax], dh[4][kMax], ddh[4][kMax];
 
   static AlePointArrays of(const math::QuadratureRule& rule) {
+    if (rule.size() < 1 || rule.size() > kMax) throw std::invalid_argument("ALE kinds: 1 to 8 Gauss points");
     AlePointArrays t;
     t.count = rule.size();
     t.padded = t.count + t.count % 2;
