@@ -82,12 +82,8 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
     const PetscInt lb = dofs.localBlock(dofs.globalBlock()[dof / bs]);
     if (lb < 0 || lb >= dofs.ownedBlocks()) continue;
     const model::TimeFunction& f = model.prescribedCoordinates()[k].function;
-    const auto same = [&](const model::TimeFunction* g) {
-      return g->kind == f.kind && g->value == f.value && g->rate == f.rate && g->start == f.start &&
-             g->end == f.end && g->amplitude == f.amplitude && g->frequency == f.frequency && g->phase == f.phase &&
-             g->omega == f.omega && g->duration == f.duration && g->times == f.times && g->values == f.values;
-    };
-    auto it = std::find_if(_movedFunctions.begin(), _movedFunctions.end(), same);
+    auto it = std::find_if(_movedFunctions.begin(), _movedFunctions.end(),
+                           [&](const model::TimeFunction* g) { return *g == f; });
     if (it == _movedFunctions.end()) it = _movedFunctions.insert(_movedFunctions.end(), &f);
     _movedCoordinates.push_back({lb * bs + dof % bs, static_cast<int>(it - _movedFunctions.begin()),
                                  model.prescribedCoordinates()[k].scale});

@@ -127,17 +127,26 @@ struct AleCableKernels {
     }
   }
 
-  // W = EA eps^2 / 2 + EI |r' x r''|^2 / (2 |r'|^6), eps = (|r'|^2 - 1) / 2.
-  template <class S>
-  [[gnu::always_inline]] static S energyDensity(const CableSection& sec, const S* G) {
-    S s = G[0] * G[0];
-    for (int i = 1; i < D; ++i) s += G[i] * G[i];
-    S c[Cable::kCurv], c2(0.0);
-    Cable::cross(G, G + D, c);
-    for (int i = 0; i < Cable::kCurv; ++i) c2 += c[i] * c[i];
-    using std::sqrt;
-    const S eps = 0.5 * (s - 1.0), A = 1.0 / (s * sqrt(s));  // pointForce's s^(-3/2): one root and division for both
-    return 0.5 * sec.EA * eps * eps + 0.5 * sec.EI * c2 * A * A;
+  // W = EA eps^2 / 2 + EI |r' x r''|^2 / (2 |r'|^6), eps = (|r'|^2 - 1) / 2, at every point,
+  // elementwise over the points (point by point the loop compiled to scalar roots and divisions);
+  // |kappa|^2 = |r' x r''|^2 / s^3 needs no root.
+  template <int P, class S>
+  static void energyDensities(const CableSection& sec, const S G[kG][P], S W[P]) {
+    for (int g = 0; g < P; ++g) {
+      S s = G[0][g] * G[0][g];
+      for (int i = 1; i < D; ++i) s += G[i][g] * G[i][g];
+      S c2;
+      if constexpr (D == 2) {
+        const S c = G[0][g] * G[3][g] - G[1][g] * G[2][g];
+        c2 = c * c;
+      } else {
+        const S cx = G[1][g] * G[5][g] - G[2][g] * G[4][g], cy = G[2][g] * G[3][g] - G[0][g] * G[5][g],
+                cz = G[0][g] * G[4][g] - G[1][g] * G[3][g];
+        c2 = cx * cx + cy * cy + cz * cz;
+      }
+      const S eps = 0.5 * (s - 1.0);
+      W[g] = 0.5 * sec.EA * eps * eps + 0.5 * sec.EI * c2 / (s * s * s);
+    }
   }
 
   // f = dU/dq (+ the damping force at fixed xi, Damped): the slots get L sum w (B1 f_r' + B2 f_r''),
@@ -167,9 +176,9 @@ struct AleCableKernels {
       S s = Gg[0] * Gg[0];
       for (int i = 1; i < D; ++i) s += Gg[i] * Gg[i];
       Cable::pointForce(sec, 0.0, 0.5 * (s - 1.0), Gg, Damped ? Gdg : static_cast<const S*>(nullptr), fGg);
-      W[g] = energyDensity(sec, Gg);
       for (int k = 0; k < kG; ++k) fG[k][g] = fGg[k];
     }
+    energyDensities<P>(sec, G, W);
     for (int k = 0; k < kDof; ++k) f[k] = S(0.0);
     S tL[P];
     for (int g = 0; g < P; ++g) {
@@ -197,31 +206,16 @@ struct AleCableKernels {
     f[kP2] = fL;
   }
 
-  // U = L sum_g w_g W_g, energyDensity's W elementwise over the points (|kappa|^2 = |r' x r''|^2 / s^3
-  // without a root; point by point, through energyDensity, the loop stayed scalar).
+  // U = L sum_g w_g W_g.
   template <int P, class S>
   static S strainEnergy(const CableSection& sec, const AlePointArrays& t, const double* q0, const S* u) {
     const Nodes<S> n(q0, u);
     const S iL = 1.0 / n.L;
-    S G[kG][P], s[P], c2[P], U[P];
+    S G[kG][P], W[P];
     positionGradients<P>(t, n, iL, G);
-    for (int g = 0; g < P; ++g) {
-      s[g] = G[0][g] * G[0][g];
-      for (int i = 1; i < D; ++i) s[g] += G[i][g] * G[i][g];
-      if constexpr (D == 2) {
-        const S c = G[0][g] * G[3][g] - G[1][g] * G[2][g];
-        c2[g] = c * c;
-      } else {
-        const S cx = G[1][g] * G[5][g] - G[2][g] * G[4][g], cy = G[2][g] * G[3][g] - G[0][g] * G[5][g],
-                cz = G[0][g] * G[4][g] - G[1][g] * G[3][g];
-        c2[g] = cx * cx + cy * cy + cz * cz;
-      }
-    }
-    for (int g = 0; g < P; ++g) {
-      const S eps = 0.5 * (s[g] - 1.0);
-      U[g] = t.w[g] * (0.5 * sec.EA * eps * eps + 0.5 * sec.EI * c2[g] / (s[g] * s[g] * s[g]));
-    }
-    return n.L * sum<P>(U);
+    energyDensities<P>(sec, G, W);
+    for (int g = 0; g < P; ++g) W[g] *= t.w[g];
+    return n.L * sum<P>(W);
   }
 
   // The inertial force of the moving material less a load per unit length on it (Moving), or minus

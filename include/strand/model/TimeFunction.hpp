@@ -34,6 +34,12 @@ struct TimeFunction {
 
   TimeValue at(double t) const;
   std::string name() const;
+  // the same function (every field above: a field added there belongs here too)
+  bool operator==(const TimeFunction& o) const {
+    return kind == o.kind && value == o.value && rate == o.rate && start == o.start && end == o.end &&
+           amplitude == o.amplitude && frequency == o.frequency && phase == o.phase && omega == o.omega &&
+           duration == o.duration && times == o.times && values == o.values;
+  }
 };
 
 }  // namespace strand::model
