@@ -86,8 +86,13 @@ Assembler::Assembler(const model::Model& model, const model::DofMap& dofs) : _mo
                            [&](const model::TimeFunction* g) { return *g == f; });
     if (it == _movedFunctions.end()) it = _movedFunctions.insert(_movedFunctions.end(), &f);
     _movedCoordinates.push_back({lb * bs + dof % bs, static_cast<int>(it - _movedFunctions.begin()),
-                                 model.prescribedCoordinates()[k].scale});
+                                 model.prescribedCoordinates()[k].scale, false});
   }
+  std::stable_sort(_movedCoordinates.begin(), _movedCoordinates.end(),
+                   [](const MovedCoordinate& a, const MovedCoordinate& b) { return a.owned < b.owned; });
+  for (size_t k = 0; k < _movedCoordinates.size(); ++k)
+    _movedCoordinates[k].first = k == 0 || _movedCoordinates[k - 1].owned != _movedCoordinates[k].owned;
+  _movedValues.resize(_movedFunctions.size());
   for (const model::DofMap::LocalGroup& local : dofs.localGroups())
     _families.push_back(makeElementFamily(model, dofs, local, _q0Local));
   _moments = std::make_unique<NodalMomentLoads>(model, dofs, _q0Local);
@@ -560,23 +565,18 @@ PetscErrorCode Assembler::prescribedMotion(PetscReal t, Vec X, Vec V, Vec A) con
       if (a) a[m.owned + i] = ddu[i];
     }
   }
-  // a coordinate may be moved by several functions (an ALE node between two material_nodes): sums
-  for (const MovedCoordinate& m : _movedCoordinates) {
-    if (x) x[m.owned] = 0.0;
-    if (v) v[m.owned] = 0.0;
-    if (a) a[m.owned] = 0.0;
-  }
   // the scene's angle is the one at t = 0: phi = angle + f(t) - f(0) (user-guide, "Turning hubs")
-  std::vector<model::TimeValue> f(_movedFunctions.size());
+  std::vector<model::TimeValue>& f = _movedValues;
   for (size_t k = 0; k < f.size(); ++k) {
     f[k] = _movedFunctions[k]->at(t);
     f[k].f -= _movedFunctions[k]->at(0.0).f;
   }
+  // sorted by coordinate: the first function of a coordinate assigns, the others add
   for (const MovedCoordinate& m : _movedCoordinates) {
     const model::TimeValue& fk = f[m.function];
-    if (x) x[m.owned] += m.scale * fk.f;
-    if (v) v[m.owned] += m.scale * fk.df;
-    if (a) a[m.owned] += m.scale * fk.ddf;
+    if (x) x[m.owned] = (m.first ? 0.0 : x[m.owned]) + m.scale * fk.f;
+    if (v) v[m.owned] = (m.first ? 0.0 : v[m.owned]) + m.scale * fk.df;
+    if (a) a[m.owned] = (m.first ? 0.0 : a[m.owned]) + m.scale * fk.ddf;
   }
   if (X) PetscCall(VecRestoreArray(X, &x));
   if (V) PetscCall(VecRestoreArray(V, &v));

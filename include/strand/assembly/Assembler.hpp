@@ -234,14 +234,18 @@ private:
   };
   std::vector<MovedBlock> _moved;          // owned blocks of hub supports
   // owned prescribed coordinates: u = scale (f(t) - f(0)) of the function _movedFunctions[function]
-  // (a payout moves every material coordinate of a body by one function: evaluated once per call)
+  // (a payout moves every material coordinate of a body by one function: evaluated once per call).
+  // Sorted by coordinate; a coordinate moved by several functions (an ALE node between two
+  // material_nodes) sums them, its first entry assigning (`first`), so one pass writes each.
   struct MovedCoordinate {
     PetscInt owned;
     int function;
     double scale;
+    bool first;
   };
   std::vector<MovedCoordinate> _movedCoordinates;
   std::vector<const model::TimeFunction*> _movedFunctions;  // distinct functions
+  mutable std::vector<model::TimeValue> _movedValues;       // their values in prescribedMotion
   std::vector<double> _q0Local;            // initial coordinates, ghosted local form
   // the constant nodal forces and the supported DOFs among the owned ones, as lists: the residual
   // and zeroSupportedRows visit these few entries instead of passing over every owned DOF
