@@ -458,7 +458,8 @@ PetscErrorCode Dynamics::formJacobian(TS ts, PetscReal t, Vec U, Vec V, Vec A, P
 
 // v . f_d with the Kelvin-Voigt force f_d = f_int(u, v) - f_int(u, 0), and v . f_s with the
 // support force f_s (supportForce).
-PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support, PetscReal* load) {
+PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, const std::optional<PetscReal>& configurationPower,
+                                PetscReal* damping, PetscReal* support, PetscReal* load) {
   PetscFunctionBeginUser;
   *damping = *support = *load = 0.0;
   // All three powers include the supported rows, as the support force does (zero v there unless the
@@ -468,13 +469,12 @@ PetscErrorCode Dynamics::powers(PetscReal t, Vec X, Vec V, PetscReal* damping, P
     PetscCall(VecSet(_w1, 0.0));
     PetscCall(_asm.addTimedLoads(t, _w1, 1.0));
     if (_asm.model().hasLoadFunction()) PetscCall(VecAXPY(_w1, _asm.model().loadFactor(t), _fext));
-    if (_configurationLoads && !_configurationPowerReady) {
+    if (_configurationLoads && !configurationPower) {
       PetscCall(_asm.configurationLoads(X, _w2));
       PetscCall(VecAXPY(_w1, _asm.model().loadFactor(t), _w2));
     }
     PetscCall(VecDot(_w1, V, load));
-    if (_configurationLoads && _configurationPowerReady) *load += _asm.model().loadFactor(t) * _configurationPower;
-    _configurationPowerReady = false;
+    if (_configurationLoads && configurationPower) *load += _asm.model().loadFactor(t) * *configurationPower;
   }
   if (_damped) {
     PetscCall(_asm.residual(X, V, t, _w1, assembly::SupportRows::Reaction));
@@ -511,17 +511,18 @@ PetscErrorCode Dynamics::dynamicResidual(Vec X, Vec V, Vec A, PetscReal t, Vec F
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Dynamics::energies(Vec X, Vec V, DynamicsStep* s) {
+PetscErrorCode Dynamics::energies(Vec X, Vec V, DynamicsStep* s, std::optional<PetscReal>* configurationPower) {
   PetscFunctionBeginUser;
   PetscScalar vmv, fu;
   PetscCall(MatMult(_M, V, _w1));
   PetscCall(VecDot(_w1, V, &vmv));
   s->kinetic = 0.5 * vmv;
+  configurationPower->reset();
   if (_variableMass) {  // and the configuration loads' power v . Q(X) in the same pass, for powers()
-    PetscReal T;
-    PetscCall(_asm.variableKineticEnergy(X, V, &T, _configurationLoads ? &_configurationPower : nullptr));
+    PetscReal T, q = 0.0;
+    PetscCall(_asm.variableKineticEnergy(X, V, &T, _configurationLoads ? &q : nullptr));
     s->kinetic += T;
-    _configurationPowerReady = _configurationLoads;
+    if (_configurationLoads) *configurationPower = q;
   }
   PetscCall(_asm.strainEnergy(X, &s->strain));
   PetscCall(VecDot(_fext, X, &fu));
@@ -567,10 +568,11 @@ PetscErrorCode Dynamics::monitorState(PetscInt step, PetscReal t, Vec X, Vec V) 
     PetscCall(TSGetStepRejections(_ts, &rejected));
     s.rejectedSteps = static_cast<int>(rejected);
   }
-  PetscCall(energies(X, V, &s));
+  std::optional<PetscReal> configurationPower;
+  PetscCall(energies(X, V, &s, &configurationPower));
   if (_constrained) PetscCall(_asm.constraintViolation(X, V, &s.constraintPosition, &s.constraintVelocity));
   PetscReal pd, ps, pl, pc = 0.0;
-  PetscCall(powers(t, X, V, &pd, &ps, &pl));
+  PetscCall(powers(t, X, V, configurationPower, &pd, &ps, &pl));
   if (_asm.hasContact()) PetscCall(_asm.contactEnergy(X, V, t, &s.contact, &pc));
   pl += pc;
   const double half = 0.5 * (t - _last.time);

@@ -44,6 +44,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -109,8 +110,10 @@ public:
   // energy created beyond half the energy the system has held: a blown-up solution) *failure
   // names the scheme, the time, the step and what to try, and X, V hold the last accepted state.
   PetscErrorCode run(Vec X, Vec V, const StepCallback& onStep, std::string* failure);
-  // Energies of a state (all ranks).
-  PetscErrorCode energies(Vec X, Vec V, DynamicsStep* s);
+  // Energies of a state (all ranks). With configuration-dependent loads (the ALE kinds') their
+  // power v . Q(X) comes out of the kinetic energy's element pass into *configurationPower, for
+  // powers() at the same state; otherwise it is left empty.
+  PetscErrorCode energies(Vec X, Vec V, DynamicsStep* s, std::optional<PetscReal>* configurationPower);
   PetscErrorCode dynamicResidual(Vec X, Vec V, Vec A, PetscReal t, Vec F, assembly::SupportRows rows);
   // The force the supports exert on the body, f_s = M a + f_int - f_ext on supported rows (zero
   // elsewhere), at the current state of the integration (inside a step callback, or after run()).
@@ -158,7 +161,9 @@ private:
   PetscErrorCode subtractPrescribedRate(Vec X, Vec w, Vec rhs, Vec scratch);
   PetscErrorCode createMassSolver(Vec X, KSP* ksp);
   PetscErrorCode currentAcceleration(Vec* A);
-  PetscErrorCode powers(PetscReal t, Vec X, Vec V, PetscReal* damping, PetscReal* support, PetscReal* load);
+  // configurationPower: v . Q(X) from energies() at this state, or empty (then assembled here)
+  PetscErrorCode powers(PetscReal t, Vec X, Vec V, const std::optional<PetscReal>& configurationPower,
+                        PetscReal* damping, PetscReal* support, PetscReal* load);
   PetscErrorCode supportForceAt(PetscReal t, Vec X, Vec V, Vec F);  // first-order form
   PetscErrorCode monitorState(PetscInt step, PetscReal t, Vec X, Vec V);
   PetscErrorCode highestFrequency(Vec X, PetscReal* omega);
@@ -178,10 +183,6 @@ private:
   bool _damped = false, _moving = false, _constrained = false;
   bool _variableMass = false;  // kinds with M(q): their inertia in the residual (Assembler::addInertia)
   bool _configurationLoads = false;  // loads Q(q) (the ALE kinds'): counted by their work, not in _fext
-  // v . Q(X) of the configuration-dependent loads from energies(), for the powers() that follow it
-  // at the same state (one element pass for both)
-  PetscReal _configurationPower = 0.0;
-  bool _configurationPowerReady = false;
   bool _firstOrder = false, _explicit = false;  // StateSpace form; RK4 / ABM4
   bool _ownAlpha = false;                        // run() integrates with our strand_alpha TS
   std::string _schemeName;
