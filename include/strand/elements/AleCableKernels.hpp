@@ -226,66 +226,52 @@ struct AleCableKernels {
   //   S_p1 = -phi_xi (1 - xi) / L - phi_L,   S_p2 = -phi_xi xi / L + phi_L,
   // where phi_xi = h2' chord + L (h1' s1 + h3' s2), phi_xiL = h1' s1 + h3' s2, phi_L = h1 s1 + h3 s2,
   // phi_xixi = h2'' chord + L (h1'' s1 + h3'' s2) and v_xi, v_L the same of the velocities.
-  // Every term is a nodal vector (chord, s1, s2, their rates, the accelerations) times a scalar of
-  // the point, so the scalars are formed once per point and shared by the D coordinates:
-  //   rddot = c_c chord + c_1 s1 + c_3 s2 + b_c vchord + b_1 vs1 + b_3 vs2 + h0 a1 + h2 a2 + L (h1 as1 + h3 as2),
-  //   c_c = h2' xidd + h2'' xid^2,  c_k = L (hk' xidd + hk'' xid^2) + hk Lddot + 2 hk' xid Ldot,
-  //   b_c = 2 h2' xid,  b_k = 2 (L hk' xid + hk Ldot)   (k = 1, 3),
-  // and S_p . e = (the same kind of scalars) . (chord . e, s1 . e, s2 . e).
   template <int P, bool Moving, class S>
   [[gnu::noinline]] static void materialForce(double rhoA, const AlePointArrays& t, const double* q0, const S* u,
                                               const S* v, const S* a, const double* load, S* F) {
     const Nodes<S> n(q0, u);
     const S iL = 1.0 / n.L;
-    S cc[P], c1[P], c3[P], bc[P], b1[P], b3[P], L1[P], L3[P];
+    S xid[P], xidd[P], Ldot(0.0), Lddot(0.0);
     if constexpr (Moving) {
-      const S Ldot = v[kP2] - v[kP1], Lddot = a[kP2] - a[kP1];
+      Ldot = v[kP2] - v[kP1];
+      Lddot = a[kP2] - a[kP1];
       for (int g = 0; g < P; ++g) {
-        const S xid = -(v[kP1] + t.x[g] * Ldot) * iL;
-        const S xidd = -(a[kP1] + 2.0 * xid * Ldot + t.x[g] * Lddot) * iL;
-        const S xid2 = xid * xid, xL = 2.0 * xid * Ldot;
-        cc[g] = t.dh[2][g] * xidd + t.ddh[2][g] * xid2;
-        c1[g] = n.L * (t.dh[1][g] * xidd + t.ddh[1][g] * xid2) + t.h[1][g] * Lddot + t.dh[1][g] * xL;
-        c3[g] = n.L * (t.dh[3][g] * xidd + t.ddh[3][g] * xid2) + t.h[3][g] * Lddot + t.dh[3][g] * xL;
-        bc[g] = 2.0 * t.dh[2][g] * xid;
-        b1[g] = 2.0 * (n.L * t.dh[1][g] * xid + t.h[1][g] * Ldot);
-        b3[g] = 2.0 * (n.L * t.dh[3][g] * xid + t.h[3][g] * Ldot);
-        L1[g] = n.L * t.h[1][g];
-        L3[g] = n.L * t.h[3][g];
+        xid[g] = -(v[kP1] + t.x[g] * Ldot) * iL;
+        xidd[g] = -(a[kP1] + 2.0 * xid[g] * Ldot + t.x[g] * Lddot) * iL;
       }
     }
-    S e[D][P], dc[P], d1[P], d3[P];  // e = rhoA rddot - load; chord . e, s1 . e, s2 . e
-    for (int g = 0; g < P; ++g) dc[g] = d1[g] = d3[g] = S(0.0);
-    for (int i = 0; i < D; ++i) {
-      const double li = load ? load[i] : 0.0;
-      for (int g = 0; g < P; ++g) {  // (points inner: the compiler vectorizes over them)
-        S ei = S(-li);
+    S e[D][P], sp1[P], sp2[P];  // e = rhoA rddot - load; sp = S_p . e
+    for (int g = 0; g < P; ++g) sp1[g] = sp2[g] = S(0.0);
+    double li[D];
+    for (int i = 0; i < D; ++i) li[i] = load ? load[i] : 0.0;
+    for (int g = 0; g < P; ++g) {  // (points outer: the compiler then vectorizes over them)
+      for (int i = 0; i < D; ++i) {
+        const S phiXL = t.dh[1][g] * n.s1[i] + t.dh[3][g] * n.s2[i];
+        const S phiX = t.dh[2][g] * n.chord[i] + n.L * phiXL;
+        const S phiL = t.h[1][g] * n.s1[i] + t.h[3][g] * n.s2[i];
+        S ei = S(-li[i]);
         if constexpr (Moving) {
-          const S rdd = cc[g] * n.chord[i] + c1[g] * n.s1[i] + c3[g] * n.s2[i] +
-                        bc[g] * (v[kX2 + i] - v[kX1 + i]) + b1[g] * v[kS1 + i] + b3[g] * v[kS2 + i] +
-                        t.h[0][g] * a[kX1 + i] + t.h[2][g] * a[kX2 + i] + L1[g] * a[kS1 + i] + L3[g] * a[kS2 + i];
+          const S phiXX = t.ddh[2][g] * n.chord[i] + n.L * (t.ddh[1][g] * n.s1[i] + t.ddh[3][g] * n.s2[i]);
+          const S vX = t.dh[2][g] * (v[kX2 + i] - v[kX1 + i]) + n.L * (t.dh[1][g] * v[kS1 + i] + t.dh[3][g] * v[kS2 + i]);
+          const S vL = t.h[1][g] * v[kS1 + i] + t.h[3][g] * v[kS2 + i];
+          const S Na = t.h[0][g] * a[kX1 + i] + t.h[2][g] * a[kX2 + i] + n.L * (t.h[1][g] * a[kS1 + i] + t.h[3][g] * a[kS2 + i]);
+          const S rdd = Na + phiX * xidd[g] + phiL * Lddot + 2.0 * vX * xid[g] + 2.0 * vL * Ldot +
+                        phiXX * xid[g] * xid[g] + 2.0 * phiXL * xid[g] * Ldot;
           ei += rhoA * rdd;
         }
         e[i][g] = ei;
-        dc[g] += n.chord[i] * ei;
-        d1[g] += n.s1[i] * ei;
-        d3[g] += n.s2[i] * ei;
+        sp1[g] += (-phiX * (1.0 - t.x[g]) * iL - phiL) * ei;
+        sp2[g] += (-phiX * t.x[g] * iL + phiL) * ei;
       }
     }
-    // S_p1 . e = -(1 - xi) h2' / L dc - ((1 - xi) h1' + h1) d1 - ((1 - xi) h3' + h3) d3,
-    // S_p2 . e = -xi h2' / L dc + (h1 - xi h1') d1 + (h3 - xi h3') d3
-    S sp1[P], sp2[P];
     for (int g = 0; g < P; ++g) {
-      const double xi = t.x[g], eta = 1.0 - xi;
-      sp1[g] = t.w[g] * (-eta * t.dh[2][g] * iL * dc[g] - (eta * t.dh[1][g] + t.h[1][g]) * d1[g] -
-                         (eta * t.dh[3][g] + t.h[3][g]) * d3[g]);
-      sp2[g] = t.w[g] * (-xi * t.dh[2][g] * iL * dc[g] + (t.h[1][g] - xi * t.dh[1][g]) * d1[g] +
-                         (t.h[3][g] - xi * t.dh[3][g]) * d3[g]);
+      sp1[g] *= t.w[g];
+      sp2[g] *= t.w[g];
     }
     const S Fp1 = sum<P>(sp1), Fp2 = sum<P>(sp2);
     S tx1[D][P], tx2[D][P], t1[D][P], t2[D][P];
-    for (int i = 0; i < D; ++i)
-      for (int g = 0; g < P; ++g) {
+    for (int g = 0; g < P; ++g)
+      for (int i = 0; i < D; ++i) {
         const S we = t.w[g] * e[i][g];
         tx1[i][g] = t.h[0][g] * we;
         tx2[i][g] = t.h[2][g] * we;
