@@ -80,8 +80,9 @@ public:
       K::force(pb.kernel, element(k), q0, u, v ? ve : static_cast<const double*>(nullptr), f);
       if (omega2 != 0.0) addCentrifugalForce(k, q0, u, loadFactor * omega2, f);
       if constexpr (K::kConfigurationLoads) {
-        double Q[N];
-        K::distributedLoad(pb.kernel, q0, u, loadPerLength(k), Q);
+        double Q[N], load[D + 1];
+        materialLoad(k, 1.0, load);
+        K::distributedLoad(pb.kernel, q0, u, load, Q);
         for (int i = 0; i < N; ++i) f[i] -= loadFactor * Q[i];
       }
       const auto& fe = pb.load;
@@ -190,7 +191,7 @@ public:
     if constexpr (!K::kConstantMass) {
       static_assert(K::kConfigurationLoads, "an M(q) kind's load rides with its inertia (inertiaLessLoad)");
       const double omega2 = _model.rotation().omega * _model.rotation().omega;
-      double u[N], q0[N], f[N], ve[N], ae[N], F[N], load[D];
+      double u[N], q0[N], f[N], ve[N], ae[N], F[N], load[D + 1];
       for (int k = 0; k < _local.size(); ++k) {
         const PerBody& pb = perBody(k);
         gather(k, x, u, q0);
@@ -198,7 +199,7 @@ public:
         gatherVelocity(k, a, ae);
         K::force(pb.kernel, element(k), q0, u, damped ? ve : static_cast<const double*>(nullptr), f);
         if (omega2 != 0.0) addCentrifugalForce(k, q0, u, loadFactor * omega2, f);
-        for (int i = 0; i < D; ++i) load[i] = loadFactor * loadPerLength(k)[i];
+        materialLoad(k, loadFactor, load);
         K::inertiaLessLoad(pb.kernel, element(k), q0, u, ve, ae, load, F);
         const auto& fe = pb.load;
         const PetscInt* lb = _local.localBlocksOf(k);
@@ -259,12 +260,13 @@ public:
     double T = 0.0;
     if constexpr (!K::kConstantMass) {
       static_assert(K::kConfigurationLoads, "an M(q) kind's load power rides with its kinetic energy");
-      double u[N], q0[N], ve[N], P = 0.0;
+      double u[N], q0[N], ve[N], load[D + 1], P = 0.0;
       for (int k = 0; k < _local.size(); ++k) {
         gather(k, x, u, q0);
         gatherVelocity(k, v, ve);
         T += K::kineticEnergy(perBody(k).kernel, q0, u, ve);
-        if (loadPower) P += K::loadPower(perBody(k).kernel, q0, u, ve, loadPerLength(k));
+        materialLoad(k, 1.0, load);
+        if (loadPower) P += K::loadPower(perBody(k).kernel, q0, u, ve, load);
       }
       if (loadPower) *loadPower += P;
     } else {
@@ -276,10 +278,11 @@ public:
   bool configurationLoads() const override { return K::kConfigurationLoads; }
   void addConfigurationLoads(const double* x, double* r) const override {
     if constexpr (K::kConfigurationLoads) {
-      double u[N], q0[N], Q[N];
+      double u[N], q0[N], Q[N], load[D + 1];
       for (int k = 0; k < _local.size(); ++k) {
         gather(k, x, u, q0);
-        K::distributedLoad(perBody(k).kernel, q0, u, loadPerLength(k), Q);
+        materialLoad(k, 1.0, load);
+        K::distributedLoad(perBody(k).kernel, q0, u, load, Q);
         const PetscInt* lb = _local.localBlocksOf(k);
         for (int a = 0; a < B; ++a)
           for (int i = 0; i < D; ++i) r[lb[a] * D + i] += Q[a * D + i];
@@ -308,7 +311,14 @@ private:
     return K::element(pb.kernel, ref);
   }
 
-  const double* loadPerLength(int k) const { return body(k).loadPerLength.data(); }
+  // The load per unit length on the material of a kind with configuration loads, times factor: the
+  // force (D components), then the torque about the centerline on a spin angle (component D; the
+  // kinds without one ignore it).
+  void materialLoad(int k, double factor, double load[D + 1]) const {
+    const model::Body& b = body(k);
+    for (int i = 0; i < D; ++i) load[i] = factor * b.loadPerLength[i];
+    load[D] = factor * b.spinTorquePerLength;
+  }
 
   // Ke += shiftA M + shiftV dF/dv + dF/du of an M(q) kind's inertia (K::inertiaTangent); nothing
   // for the others.
@@ -327,8 +337,9 @@ private:
   // Ke -= loadFactor dQ_f/du of a configuration-dependent distributed load (K::kConfigurationLoads).
   void addLoadTangent(int k, const double* q0, const double* u, double loadFactor, double* Ke) const {
     if constexpr (K::kConfigurationLoads) {
-      double Kf[N * N];
-      K::distributedLoadTangent(perBody(k).kernel, q0, u, loadPerLength(k), Kf);
+      double Kf[N * N], load[D + 1];
+      materialLoad(k, 1.0, load);
+      K::distributedLoadTangent(perBody(k).kernel, q0, u, load, Kf);
       for (int i = 0; i < N * N; ++i) Ke[i] -= loadFactor * Kf[i];
     } else {
       (void)k, (void)q0, (void)u, (void)loadFactor, (void)Ke;

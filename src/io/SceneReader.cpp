@@ -1772,11 +1772,19 @@ private:
     }
     if (const Field distributed = f.child("distributed"); distributed.present()) {
       for (const Field& item : distributed.items()) {
-        item.expectMap({"body", "force_per_length"});
+        item.expectMap({"body", "force_per_length", "spin_torque_per_length"});
         model::DistributedLoadDesc load;
         load.mark = item.mark();
-        load.body = findBody(item.child("body")).name;
-        load.forcePerLength = readVector(item.child("force_per_length"), ctx_.dim);
+        const model::BodyDesc& body = findBody(item.child("body"));
+        load.body = body.name;
+        const Field force = item.child("force_per_length"), torque = item.child("spin_torque_per_length");
+        if (!force.present() && !torque.present()) item.fail("needs a 'force_per_length' or a 'spin_torque_per_length'");
+        if (force.present()) load.forcePerLength = readVector(force, ctx_.dim);
+        if (torque.present()) {
+          const elements::KindInfo& kind = elements::kindInfo(body.kind);
+          if (kind.blockWith(elements::BlockRole::MaterialSpin) < 0) torque.fail(std::string(kind.name) + " has no spin angle (AleBeamShaft3d has)");
+          load.spinTorquePerLength = torque.number();
+        }
         scene_.loads.distributed.push_back(std::move(load));
       }
     }

@@ -720,6 +720,7 @@ void Model::addLoads(Build& build) {
   for (const DistributedLoadDesc& l : scene.loads.distributed) {
     Body& b = build.body(_bodies, l.body, l.mark);
     for (int k = 0; k < 3; ++k) b.loadPerLength[k] += l.forcePerLength[k];
+    b.spinTorquePerLength += l.spinTorquePerLength;
   }
   for (size_t r = 0; r < _rigid.size(); ++r) {
     const RigidBodyDesc& rd = scene.rigidBodies[r];

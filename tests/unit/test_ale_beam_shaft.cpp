@@ -11,7 +11,10 @@
 //    the flux of the spin adds, at each end, rho I_p pdot thetadot(p_i) S_r(p_i)
 //    - rho I_p / 2 thetadot(p_i)^2 delta_{k,p_i}, with thetadot(p_i) = vtheta_i - theta' pdot_i;
 //  - with p1, p2 held, the element is the Lagrangian cable plus the linear torsion element:
-//    torque G I_p / L [[1, -1], [-1, 1]] theta and polar mass rho I_p L / 6 [[2, 1], [1, 2]].
+//    torque G I_p / L [[1, -1], [-1, 1]] theta and polar mass rho I_p L / 6 [[2, 1], [1, 2]];
+//  - a torque m per unit length on the material: its generalized force is the virtual work
+//    int m delta theta dp at fixed material points (differenced here, independently of the closed
+//    form), its tangent the dual-number derivative, its power int m thetadot dp = v . Q_m.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,6 +22,7 @@
 
 #include "strand/elements/AleBeamShaft.hpp"
 #include "strand/math/Dual.hpp"
+#include "strand/math/Gauss.hpp"
 
 using namespace strand;
 using namespace strand::elements;
@@ -124,7 +128,7 @@ TEST(AleBeamShaft, InertiaTangentsAreTheExactDerivatives) {
 TEST(AleBeamShaft, InertiaLessLoadIsTheInertiaLessTheDistributedLoad) {
   Fixture fx;
   const E::Element el = E::element(fx.body, nullptr);
-  const double load[3] = {0.3, -9.81, 1.7};
+  const double load[4] = {0.3, -9.81, 1.7, 45.0};  // a force and a torque per unit length
   double F[N], Q[N], both[N];
   E::inertia(fx.body, el, fx.q0, fx.u, fx.v, fx.a, F);
   E::distributedLoad(fx.body, fx.q0, fx.u, load, Q);
@@ -232,4 +236,62 @@ TEST(AleBeamShaft, TwistDampingOnTheHeldMaterialIsTheLinearElements) {
       EXPECT_EQ(fd[k], f0[k]) << "entry " << k;
     }
   }
+}
+
+namespace {
+
+// theta at the material point p of an element with coordinates q (linear in xi = (p - p1) / L).
+double thetaAt(const double* q, double p) {
+  const double xi = (p - q[E::kP1]) / (q[E::kP2] - q[E::kP1]);
+  return (1.0 - xi) * q[E::kT1] + xi * q[E::kT2];
+}
+
+}  // namespace
+
+// requirement (seed 000 Eq. 43-44 for a torque on the spin angle): Q_m,k = int m d theta(p)/d q_k dp
+// over the element's material at fixed p, differenced (central, h = 1e-6) and integrated by a
+// 5-point rule; the force part of the load is zero, so every other entry of Q vanishes.
+TEST(AleBeamShaft, DistributedTorqueIsTheVirtualWorkAtFixedMaterialPoints) {
+  Fixture fx;
+  const double m = 45.0, load[4] = {0.0, 0.0, 0.0, m};
+  double Q[N];
+  E::distributedLoad(fx.body, fx.q0, fx.u, load, Q);
+  double q[N];
+  for (int k = 0; k < N; ++k) q[k] = fx.q0[k] + fx.u[k];
+  const double p1 = q[E::kP1], L = q[E::kP2] - q[E::kP1], h = 1e-6;
+  const math::QuadratureRule rule = math::gaussLegendre(5);
+  for (int k = 0; k < N; ++k) {
+    double plus[N], minus[N];
+    for (int j = 0; j < N; ++j) plus[j] = minus[j] = q[j];
+    plus[k] += h, minus[k] -= h;
+    double ref = 0.0;
+    for (int g = 0; g < rule.size(); ++g) {
+      const double p = p1 + rule.x[g] * L;
+      ref += rule.w[g] * L * m * (thetaAt(plus, p) - thetaAt(minus, p)) / (2.0 * h);
+    }
+    EXPECT_NEAR(Q[k], ref, 1e-8 * m * L) << "entry " << k;
+  }
+  EXPECT_NEAR(Q[E::kT1], 0.5 * m * L, 1e-14 * m * L);
+}
+
+// The torque's tangent (not symmetric: Q_m is no gradient) is the dual-number derivative, with the
+// force's; and v . Q = loadPower (int (rdot . f + thetadot m) dp).
+TEST(AleBeamShaft, DistributedTorqueHasAnExactTangentAndItsPower) {
+  Fixture fx;
+  const double load[4] = {0.3, -9.81, 1.7, 45.0};
+  double Q[N], K[N * N];
+  E::distributedLoad(fx.body, fx.q0, fx.u, load, Q);
+  E::distributedLoadTangent(fx.body, fx.q0, fx.u, load, K);
+  Dl ud[N], Qd[N];
+  for (int k = 0; k < N; ++k) ud[k] = Dl::variable(fx.u[k], k);
+  E::distributedLoad(fx.body, fx.q0, ud, load, Qd);
+  double ref[N * N];
+  for (int r = 0; r < N; ++r)
+    for (int c = 0; c < N; ++c) ref[r * N + c] = Qd[r].d[c];
+  const double s = maxAbs(ref, N * N);
+  EXPECT_NE(K[E::kT1 * N + E::kP2], 0.0);
+  for (int k = 0; k < N * N; ++k) EXPECT_NEAR(K[k], ref[k], 1e-12 * s) << "entry " << k;
+  double vQ = 0.0;
+  for (int k = 0; k < N; ++k) vQ += fx.v[k] * Q[k];
+  EXPECT_NEAR(E::loadPower(fx.body, fx.q0, fx.u, fx.v, load), vQ, 1e-13 * maxAbs(Q, N) * maxAbs(fx.v, N));
 }

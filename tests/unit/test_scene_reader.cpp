@@ -466,8 +466,8 @@ TEST(SceneReader, MissingRequiredValuesAreRejected) {
   EXPECT_TRUE(failsWith(edit(kBase3d, "node: 0, ", ""), 10, "supports[0].node", "missing"));
   EXPECT_TRUE(failsWith("analysis: static\ndimension: 3\n", 1, "bodies", "missing required value"));
   EXPECT_TRUE(failsWith("analysis: static\ndimension: 3\nbodies: []\n", 3, "bodies", "at least one body"));
-  EXPECT_TRUE(
-      failsWith(kBase3d + "  distributed: [{body: cable}]\n", 13, "loads.distributed[0].force_per_length", "missing"));
+  EXPECT_TRUE(failsWith(kBase3d + "  distributed: [{body: cable}]\n", 13, "loads.distributed[0]",
+                        "needs a 'force_per_length' or a 'spin_torque_per_length'"));
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -1364,6 +1364,20 @@ TEST(SceneReader, SpinTorqueNeedsASpinAngle) {
            "section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}", "section: {E: 2.1e11, rho: 7850, radius: 0.005}");
   const model::SceneDescription s = parseScene(edit(shaft, "force: [0, 0, -1]}", "spin_torque: 5}"), "scene.yaml");
   EXPECT_DOUBLE_EQ(s.loads.nodal[0].spinTorque, 5.0);
+}
+
+// spin_torque_per_length (a distributed torque on the spin angle): likewise.
+TEST(SceneReader, DistributedSpinTorqueNeedsASpinAngle) {
+  EXPECT_TRUE(failsWith(kBase3d + "  distributed: [{body: cable, spin_torque_per_length: 2}]\n", 13,
+                        "loads.distributed[0].spin_torque_per_length", "AncfCable3d has no spin angle (AleBeamShaft3d has)"));
+  const std::string shaft =
+      edit(edit(kBase3d, "element: AncfCable3d", "element: AleBeamShaft3d"),
+           "section: {E: 2.1e11, A: 7.85e-5, I: 4.91e-10, rho: 7850}", "section: {E: 2.1e11, rho: 7850, radius: 0.005}");
+  const model::SceneDescription s =
+      parseScene(shaft + "  distributed: [{body: cable, spin_torque_per_length: 2}]\n", "scene.yaml");
+  ASSERT_EQ(s.loads.distributed.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.loads.distributed[0].spinTorquePerLength, 2.0);
+  EXPECT_EQ(s.loads.distributed[0].forcePerLength[2], 0.0);
 }
 
 // requirement (issue 36 item 5): probes name a point and a frame; a wrong one names file, line,

@@ -146,13 +146,51 @@ public:
     addSpinInertia(b, q0, u, v, a, F);
   }
 
-  // The inertia less a force per unit length on the material (the dynamic residual's; the load
-  // moves no spin).
+  // The inertia less the load per unit length on the material (the dynamic residual's): the force
+  // load[0..2] and the torque load[3] about the centerline (spinTorqueLoad).
   template <class S>
   static void inertiaLessLoad(const Body& b, const Element&, const double* q0, const S* u, const S* v, const S* a,
                               const double* load, S* F) {
     Cable::inertiaLessLoad(b, Cable::Element{&b}, q0, u, v, a, load, F);
     addSpinInertia(b, q0, u, v, a, F);
+    addSpinTorqueLoad(q0, u, -load[3], F);
+  }
+
+  // ---- distributed loads: a force f (load[0..2], the cable's Q_f) and a torque m (load[3]) per
+  // unit length on the moving material ----
+  // The torque's virtual work at fixed material points, int_{p1}^{p2} m delta theta dp
+  // (Eq. 43-44 with the spin row S_r for S_t), is Q_m = L int_0^1 S_r^T m dxi: on (theta1, theta2,
+  // p1, p2), exactly,
+  //   Q_m = m (L / 2, L / 2, -theta_xi / 2, -theta_xi / 2),   theta_xi = theta2 - theta1,
+  // the p entries from the material sliding past a twisted element. Not a gradient: its tangent
+  // has m/2 (-1, 1) in the theta rows' p columns and m/2 (1, -1) in the p rows' theta columns.
+  template <class S>
+  static void distributedLoad(const Body& b, const double* q0, const S* u, const double* load, S* Q) {
+    Cable::distributedLoad(b, q0, u, load, Q);
+    addSpinTorqueLoad(q0, u, load[3], Q);
+  }
+
+  static void distributedLoadTangent(const Body& b, const double* q0, const double* u, const double* load, double* K) {
+    Cable::distributedLoadTangent(b, q0, u, load, K);
+    const double h = 0.5 * load[3];
+    for (int r : {kT1, kT2}) {
+      K[r * kDof + kP1] -= h;
+      K[r * kDof + kP2] += h;
+    }
+    for (int r : {kP1, kP2}) {
+      K[r * kDof + kT1] += h;
+      K[r * kDof + kT2] -= h;
+    }
+  }
+
+  // v . (Q_f + Q_m): the torque's power is int m thetadot dp with the material's spin rate,
+  // m / 2 (L (vt1 + vt2) - theta_xi (vp1 + vp2)).
+  template <class S>
+  static S loadPower(const Body& b, const double* q0, const S* u, const S* v, const double* load) {
+    S Q[kDof];
+    for (int k = 0; k < kDof; ++k) Q[k] = S(0.0);
+    addSpinTorqueLoad(q0, u, load[3], Q);
+    return Cable::loadPower(b, q0, u, v, load) + Q[kT1] * v[kT1] + Q[kT2] * v[kT2] + Q[kP1] * v[kP1] + Q[kP2] * v[kP2];
   }
 
   template <class S>
@@ -202,6 +240,17 @@ public:
   static bool velocityDependent(const Body& b) { return Cable::velocityDependent(b) || b.dampTorsion != 0.0; }
 
 private:
+  // Q += Q_m of a torque m per unit length (distributedLoad).
+  template <class S>
+  static void addSpinTorqueLoad(const double* q0, const S* u, double m, S* Q) {
+    if (m == 0.0) return;
+    const S L = (q0[kP2] + u[kP2]) - (q0[kP1] + u[kP1]), tx = (q0[kT2] + u[kT2]) - (q0[kT1] + u[kT1]);
+    Q[kT1] += 0.5 * m * L;
+    Q[kT2] += 0.5 * m * L;
+    Q[kP1] -= 0.5 * m * tx;
+    Q[kP2] -= 0.5 * m * tx;
+  }
+
   // F += rho I_p int S_r^T thetaddot dp.
   template <class S>
   static void addSpinInertia(const Body& b, const double* q0, const S* u, const S* v, const S* a, S* F) {

@@ -309,7 +309,9 @@ public:
   // ---- distributed loads: a force per unit length f on the moving material ----
   // Q_f = int_{p1}^{p2} S^T f dp (seed 000 Eq. 43-44 with the p columns of S): it depends on the
   // coordinates (the element's length and the material it holds), so it is assembled with the
-  // elastic force (kConfigurationLoads) and has a tangent.
+  // elastic force (kConfigurationLoads) and has a tangent. The load arrays (fvec, load, f) hold D
+  // force components and then a torque per unit length on a spin angle (AleBeamShaft3d), which
+  // the cable ignores.
   static constexpr bool kConfigurationLoads = true;
 
   template <class S>

@@ -45,6 +45,7 @@ struct Body {
   std::vector<double> referenceValues;  // stress_free: initial: kind-defined values per element (empty: none)
   std::vector<PointMass> pointMasses;
   Vec3 loadPerLength{};                 // gravity rho A g plus distributed loads [N/m]
+  double spinTorquePerLength = 0.0;     // distributed torque on the spin angle [N m/m] (AleBeamShaft3d)
 
   const elements::KindInfo& info() const { return elements::kindInfo(kind); }
   int block(int node, int k) const { return nodeBlocks[node * blocksPerNode + k]; }

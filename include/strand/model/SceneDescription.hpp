@@ -204,6 +204,7 @@ struct NodalLoadDesc {
 struct DistributedLoadDesc {
   std::string body;
   Vec3 forcePerLength{};  // [N/m], constant along the body
+  double spinTorquePerLength = 0.0;  // [N m/m] about the centerline, on the spin angle (AleBeamShaft3d)
   SourceMark mark;
 };
 
