@@ -187,30 +187,51 @@ TEST(SpinningShaft, MovingRotatingLoadFollowsTheModalSeries) {
   }
 }
 
-// requirement (seed 000 Eq. 45-46): a torque T about the centerline at the free end of a shaft
-// held at the other end twists it by theta(l) = T l / (G I_p), exactly for the linear spin
-// interpolation at any N; the twist is linear along the shaft.
-TEST(SpinningShaft, EndTorqueTwistsTheShaftByTlOverGIp) {
-  for (int n : {1, 3, 8}) {
-    model::SceneDescription sc;
-    sc.file = "(test)";
-    sc.dimension = 3;
-    sc.analysis = model::Analysis::Static;
-    model::BodyDesc b;
-    b.name = "shaft";
-    b.kind = elements::findKind("AleBeamShaft3d");
-    b.elements = n;
-    b.geometry.kind = model::GeometryKind::Line;
-    b.geometry.start = {0, 0, 0};
-    b.geometry.end = {0, 0, kL};
-    b.section.numbers = {{"E", kE}, {"nu", 0.3}, {"rho", kRho}, {"radius", kR}, {"inner_radius", 0.004}};
-    sc.bodies.push_back(b);
+namespace {
+
+// The torsion tests' shaft: a steel tube (R = 1 cm, r = 4 mm) of n AleBeamShaft3d elements along z,
+// its material held, clamped at z = 0 with its spin angle held there (clamp = true).
+constexpr double kRi = 0.004;
+const double kIp = M_PI * (std::pow(kR, 4) - std::pow(kRi, 4)) / 2.0, kG = kE / 2.6;  // nu = 0.3
+
+model::SceneDescription tubeShaft(int n, model::Analysis analysis, bool clamp) {
+  model::SceneDescription sc;
+  sc.file = "(test)";
+  sc.dimension = 3;
+  sc.analysis = analysis;
+  model::BodyDesc b = straightBody("shaft", 3, n, {0, 0, 0}, {0, 0, kL});
+  b.kind = elements::findKind("AleBeamShaft3d");
+  b.section.numbers = {{"E", kE}, {"nu", 0.3}, {"rho", kRho}, {"radius", kR}, {"inner_radius", kRi}};
+  sc.bodies.push_back(b);
+  if (clamp) {
     model::SupportDesc root;
     root.at.body = "shaft";
     root.at.node = 0;
     root.type = model::SupportType::Fixed;
     root.dofs = {0, 1, 2, 3, 4, 5, 7};  // clamped, and its spin angle held
     sc.supports.push_back(root);
+  }
+  return sc;
+}
+
+// The same with a torque m per unit length on the spin angle (loads.distributed).
+model::SceneDescription torqueShaft(int n, double m, model::Analysis analysis, bool clamp) {
+  model::SceneDescription sc = tubeShaft(n, analysis, clamp);
+  model::DistributedLoadDesc torque;
+  torque.body = "shaft";
+  torque.spinTorquePerLength = m;
+  sc.loads.distributed.push_back(torque);
+  return sc;
+}
+
+}  // namespace
+
+// requirement (seed 000 Eq. 45-46): a torque T about the centerline at the free end of a shaft
+// held at the other end twists it by theta(l) = T l / (G I_p), exactly for the linear spin
+// interpolation at any N; the twist is linear along the shaft.
+TEST(SpinningShaft, EndTorqueTwistsTheShaftByTlOverGIp) {
+  for (int n : {1, 3, 8}) {
+    model::SceneDescription sc = tubeShaft(n, model::Analysis::Static, true);
     model::NodalLoadDesc torque;
     torque.at.body = "shaft";
     torque.at.node = -1;
@@ -221,40 +242,13 @@ TEST(SpinningShaft, EndTorqueTwistsTheShaftByTlOverGIp) {
     const std::vector<double> q = solveStatic(p, 1, &failure);
     EXPECT_EQ(failure, "");
     if (q.empty()) continue;  // other ranks
-    const double Ip = M_PI * (std::pow(kR, 4) - std::pow(0.004, 4)) / 2.0, G = kE / 2.6;
     const model::Body& body = p.model().bodies()[0];
     for (int k = 0; k <= n; ++k) {
-      const double theta = q[body.block(k, 2) * 3 + 1], exact = 250.0 * (kL * k / n) / (G * Ip);
-      EXPECT_NEAR(theta, exact, 1e-9 * std::fabs(250.0 * kL / (G * Ip))) << "N " << n << " node " << k;
+      const double theta = q[body.block(k, 2) * 3 + 1], exact = 250.0 * (kL * k / n) / (kG * kIp);
+      EXPECT_NEAR(theta, exact, 1e-9 * std::fabs(250.0 * kL / (kG * kIp))) << "N " << n << " node " << k;
     }
   }
 }
-
-namespace {
-
-// A shaft along z, its material held: the distributed torque m per unit length on the spin angle.
-model::SceneDescription torqueShaft(int n, double m, model::Analysis analysis) {
-  model::SceneDescription sc;
-  sc.file = "(test)";
-  sc.dimension = 3;
-  sc.analysis = analysis;
-  model::BodyDesc b;
-  b.name = "shaft";
-  b.kind = elements::findKind("AleBeamShaft3d");
-  b.elements = n;
-  b.geometry.kind = model::GeometryKind::Line;
-  b.geometry.start = {0, 0, 0};
-  b.geometry.end = {0, 0, kL};
-  b.section.numbers = {{"E", kE}, {"nu", 0.3}, {"rho", kRho}, {"radius", kR}, {"inner_radius", 0.004}};
-  sc.bodies.push_back(b);
-  model::DistributedLoadDesc torque;
-  torque.body = "shaft";
-  torque.spinTorquePerLength = m;
-  sc.loads.distributed.push_back(torque);
-  return sc;
-}
-
-}  // namespace
 
 // A torque m per unit length about the centerline (a drill string's wall friction), on a shaft
 // clamped at z = 0 with its spin held there: theta(z) = m (l z - z^2 / 2) / (G I_p), the solution of
@@ -263,23 +257,16 @@ model::SceneDescription torqueShaft(int n, double m, model::Analysis analysis) {
 TEST(SpinningShaft, DistributedTorqueTwistsTheShaftAsGIpThetaSecondIsMinusM) {
   const double m = 400.0;
   for (int n : {1, 3, 8}) {
-    model::SceneDescription sc = torqueShaft(n, m, model::Analysis::Static);
-    model::SupportDesc root;
-    root.at.body = "shaft";
-    root.at.node = 0;
-    root.type = model::SupportType::Fixed;
-    root.dofs = {0, 1, 2, 3, 4, 5, 7};  // clamped, and its spin angle held
-    sc.supports.push_back(root);
+    const model::SceneDescription sc = torqueShaft(n, m, model::Analysis::Static, true);
     solvers::Problem p(PETSC_COMM_WORLD, sc);
     std::string failure;
     const std::vector<double> q = solveStatic(p, 1, &failure);
     EXPECT_EQ(failure, "");
     if (q.empty()) continue;  // other ranks
-    const double Ip = M_PI * (std::pow(kR, 4) - std::pow(0.004, 4)) / 2.0, G = kE / 2.6;
-    const double tip = m * kL * kL / (2.0 * G * Ip);
+    const double tip = m * kL * kL / (2.0 * kG * kIp);
     const model::Body& body = p.model().bodies()[0];
     for (int k = 0; k <= n; ++k) {
-      const double z = kL * k / n, exact = m * (kL * z - 0.5 * z * z) / (G * Ip);
+      const double z = kL * k / n, exact = m * (kL * z - 0.5 * z * z) / (kG * kIp);
       EXPECT_NEAR(q[body.block(k, 2) * 3 + 1], exact, 1e-9 * tip) << "N " << n << " node " << k;
     }
   }
@@ -297,7 +284,7 @@ namespace {
 // the material coordinates does no work (W_s, asserted with the balance).
 void distributedTorqueSpinUp(double transport) {
   const double m = 3.0, tEnd = 0.02;
-  model::SceneDescription sc = torqueShaft(4, m, model::Analysis::Dynamic);
+  model::SceneDescription sc = torqueShaft(4, m, model::Analysis::Dynamic, false);
   if (transport != 0.0) {
     sc.bodies[0].hasMaterialMotion = true;
     sc.bodies[0].materialMotion.kind = model::TimeFunction::Kind::Linear;
@@ -319,7 +306,7 @@ void distributedTorqueSpinUp(double transport) {
   PetscCallAbort(PETSC_COMM_WORLD, p.createInitialState(&X, &V));
   solvers::Dynamics dyn(p.assembler(), sc.dynamics);
   const model::Body& body = p.model().bodies()[0];
-  const double Ip = M_PI * (std::pow(kR, 4) - std::pow(0.004, 4)) / 2.0, alpha = m / (kRho * Ip);
+  const double alpha = m / (kRho * kIp);
   double worstTheta = 0.0, worstEnergy = 0.0, lastT = 0.0, T0 = 0.0, lastSupportWork = 0.0;
   solvers::Dynamics::StepCallback cb = [&](const solvers::DynamicsStep& st, Vec Xs, Vec) -> PetscErrorCode {
     std::vector<double> q;
@@ -344,7 +331,7 @@ void distributedTorqueSpinUp(double transport) {
               "T - T(0) %.6e J, max |T - T(0) - W - W_s| %.3e J, W_s %.3e J\n", transport, thetaEnd, worstTheta, lastT,
               worstEnergy, lastSupportWork);
   EXPECT_LT(worstTheta, 1e-9 * thetaEnd);
-  EXPECT_NEAR(lastT, 0.5 * kRho * Ip * kL * std::pow(alpha * tEnd, 2), 1e-8 * lastT);
+  EXPECT_NEAR(lastT, 0.5 * kRho * kIp * kL * std::pow(alpha * tEnd, 2), 1e-8 * lastT);
   EXPECT_LT(worstEnergy, 1e-8 * lastT);
   EXPECT_LT(std::fabs(lastSupportWork), 1e-8 * lastT);
   VecDestroy(&X);

@@ -187,10 +187,11 @@ public:
   // m / 2 (L (vt1 + vt2) - theta_xi (vp1 + vp2)).
   template <class S>
   static S loadPower(const Body& b, const double* q0, const S* u, const S* v, const double* load) {
-    S Q[kDof];
-    for (int k = 0; k < kDof; ++k) Q[k] = S(0.0);
-    addSpinTorqueLoad(q0, u, load[3], Q);
-    return Cable::loadPower(b, q0, u, v, load) + Q[kT1] * v[kT1] + Q[kT2] * v[kT2] + Q[kP1] * v[kP1] + Q[kP2] * v[kP2];
+    S P = Cable::loadPower(b, q0, u, v, load), Qm[4];
+    if (load[3] == 0.0) return P;
+    spinTorqueLoad(q0, u, load[3], Qm);
+    for (int k = 0; k < 4; ++k) P += Qm[k] * v[kSpinColumns[k]];
+    return P;
   }
 
   template <class S>
@@ -240,15 +241,23 @@ public:
   static bool velocityDependent(const Body& b) { return Cable::velocityDependent(b) || b.dampTorsion != 0.0; }
 
 private:
-  // Q += Q_m of a torque m per unit length (distributedLoad).
+  static constexpr int kSpinColumns[4] = {kT1, kT2, kP1, kP2};
+
+  // Q_m of a torque m per unit length (distributedLoad) on kSpinColumns.
+  template <class S>
+  static void spinTorqueLoad(const double* q0, const S* u, double m, S Qm[4]) {
+    const S L = (q0[kP2] + u[kP2]) - (q0[kP1] + u[kP1]), tx = (q0[kT2] + u[kT2]) - (q0[kT1] + u[kT1]);
+    Qm[0] = Qm[1] = 0.5 * m * L;
+    Qm[2] = Qm[3] = -0.5 * m * tx;
+  }
+
+  // Q += Q_m.
   template <class S>
   static void addSpinTorqueLoad(const double* q0, const S* u, double m, S* Q) {
     if (m == 0.0) return;
-    const S L = (q0[kP2] + u[kP2]) - (q0[kP1] + u[kP1]), tx = (q0[kT2] + u[kT2]) - (q0[kT1] + u[kT1]);
-    Q[kT1] += 0.5 * m * L;
-    Q[kT2] += 0.5 * m * L;
-    Q[kP1] -= 0.5 * m * tx;
-    Q[kP2] -= 0.5 * m * tx;
+    S Qm[4];
+    spinTorqueLoad(q0, u, m, Qm);
+    for (int k = 0; k < 4; ++k) Q[kSpinColumns[k]] += Qm[k];
   }
 
   // F += rho I_p int S_r^T thetaddot dp.
@@ -266,7 +275,7 @@ private:
   // columns col = (theta1, theta2, p1, p2).
   template <class S>
   struct Spin {
-    static constexpr int col[4] = {kT1, kT2, kP1, kP2};
+    static constexpr const int* col = kSpinColumns;
     S L, tx, txd, xid, xidd, Ldot, thd, thdd, Sr[4];
     template <class Q>
     Spin(double xi, const double* q0, const Q* u, const S* v, const S* a, const S& length) : L(length) {
