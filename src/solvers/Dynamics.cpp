@@ -182,6 +182,12 @@ PetscErrorCode Dynamics::setFromOptions() {
   PetscReal c = _reuse.contraction();
   PetscCall(PetscOptionsGetReal(nullptr, "dyn_", "-newton_matrix_contraction", &c, nullptr));
   _reuse.setContraction(c);
+  PetscReal price = _reuse.price();
+  PetscCall(PetscOptionsGetReal(nullptr, "dyn_", "-newton_matrix_price", &price, nullptr));
+  PetscCheck(price >= 0.0, _asm.dofs().comm(), PETSC_ERR_ARG_OUTOFRANGE,
+             "-dyn_newton_matrix_price %g: the price of a Newton matrix in iterations is >= 0 (0: never bought for the "
+             "extra iterations of a kept one)", static_cast<double>(price));
+  _reuse.setPrice(price);
   PetscCall(PetscOptionsGetReal(nullptr, "dyn_", "-newton_kept_tolerance", &_floor.keptTolerance, nullptr));
   PetscBool ours, alpha2;
   PetscCall(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), kTsGeneralizedAlpha, &ours));

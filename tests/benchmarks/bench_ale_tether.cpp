@@ -5,13 +5,15 @@
 //          configuration-dependent mass and the mass-transport inertia assembled every Newton step)
 //   cable  AncfCable2d of the same N, the fixed-length tether (constant mass)
 // The two run alternately in one process, `-rounds` times (default 3); each run takes `-steps`
-// steps (default 30) after the start; the ALE cost factor is the median over rounds of the ratio
-// of the wall times per step, and the ratio of the fastest rounds (a shared host's noise only adds
-// time, so each model's fastest round is the estimate least disturbed by it). One JSON line per
-// run, then a summary line. Options: -elements N
-// (default 10000), -steps, -rounds. Under mpirun the same on every rank count. With -only ale (or
-// cable) one run of that model in tests/benchmarks/parallel_ratio.py's terms:
-//   parallel_ratio.py build/tests/benchmarks/bench_ale_tether mpiexec --rounds 3 -only ale -steps 60
+// steps after the start (default 300: the gravity ramp takes the first 100, and only after it does
+// the payout's kept Newton matrix go stale, docs/performance.md). The ALE cost factor is the
+// median over rounds of the ratio of the wall times per step, and the ratio of the fastest rounds
+// (a shared host's noise only adds time, so each model's fastest round is the estimate least
+// disturbed by it). One JSON line per run, then a summary line. Options: -elements N (default
+// 10000), -steps, -rounds, -trace (a line per step: Newton iterations, matrices so far), and the
+// dynamics' -dyn_ options. Under mpirun the same on every rank count. With -only ale (or cable)
+// one run of that model in tests/benchmarks/parallel_ratio.py's terms:
+//   parallel_ratio.py build/tests/benchmarks/bench_ale_tether mpiexec --rounds 3 -only ale -steps 300
 #include <petscsys.h>
 #include <petsctime.h>
 
@@ -87,7 +89,7 @@ struct Run {
   std::string failure;
 };
 
-Run run(bool ale, int elements, int steps) {
+Run run(bool ale, int elements, int steps, bool trace) {
   MPI_Comm comm = PETSC_COMM_WORLD;
   PetscLogDouble t0, t1, t2;
   PetscCallAbort(comm, PetscTime(&t0));
@@ -102,6 +104,8 @@ Run run(bool ale, int elements, int steps) {
     if (s.step == 0) PetscCall(PetscTime(&t1));  // the consistent start done: time the steps
     newton += s.newtonIterations;
     taken = s.step;
+    if (trace) PetscCall(PetscPrintf(comm, "{\"trace\": \"%s\", \"step\": %d, \"newton\": %d, \"matrices\": %ld}\n",
+                                     ale ? "ale" : "cable", s.step, s.newtonIterations, dyn.newtonMatrices()));
     return 0;
   };
   Run r;
@@ -123,10 +127,12 @@ Run run(bool ale, int elements, int steps) {
 
 int main(int argc, char** argv) {
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
-  PetscInt elements = 10000, steps = 30, rounds = 3;
+  PetscInt elements = 10000, steps = 300, rounds = 3;
   PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-elements", &elements, nullptr));
   PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-steps", &steps, nullptr));
   PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-rounds", &rounds, nullptr));
+  PetscBool trace = PETSC_FALSE;  // -trace: one line per step (Newton iterations, Newton matrices formed so far)
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-trace", &trace, nullptr));
   int ranks, rank;
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -137,7 +143,7 @@ int main(int argc, char** argv) {
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-only", only, sizeof(only), &hasOnly));
   if (hasOnly) {
     const bool ale = std::string(only) == "ale";
-    const Run r = run(ale, static_cast<int>(elements), static_cast<int>(steps));
+    const Run r = run(ale, static_cast<int>(elements), static_cast<int>(steps), trace);
     if (rank == 0)
       std::printf("{\"bench\": \"ale_tether\", \"model\": \"%s\", \"elements\": %d, \"ranks\": %d, \"steps\": %ld, "
                   "\"steady_ms_per_step\": %.4f, \"ms_per_step\": %.4f, \"tip_z\": %.15e, \"failure\": \"%s\"}\n",
@@ -152,7 +158,7 @@ int main(int argc, char** argv) {
     Run pair[2];
     for (int a = 0; a < 2; ++a) {
       const bool ale = (a == 0) == (k % 2 == 0);  // alternate which goes first
-      pair[ale ? 0 : 1] = run(ale, static_cast<int>(elements), static_cast<int>(steps));
+      pair[ale ? 0 : 1] = run(ale, static_cast<int>(elements), static_cast<int>(steps), trace);
       const Run& r = pair[ale ? 0 : 1];
       if (rank == 0)
         std::printf("{\"bench\": \"ale_tether\", \"model\": \"%s\", \"round\": %d, \"elements\": %d, \"ranks\": %d, "

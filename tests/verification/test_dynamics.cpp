@@ -310,6 +310,11 @@ TEST(Dynamics, KeptNewtonMatrixFollowsFullNewtonWithFewerMatrices) {
 // predictor instead, and PETSc's |R| <= rtol |R0| no longer ends a kept matrix's Newton on its own
 // (NewtonConvergence.cpp). Measured: 6.2e-11 m at -n 1, 3.0e-10 m at -n 2 (0.07 %, 0.3 %); before,
 // 7.05e-6 m, 80x e_h.
+// The matrices: the hub turns the beam away from a kept matrix, whose solves then take a third
+// iteration; the rent rule (NewtonMatrixReuse) buys a new one after 8 such iterations, about every
+// 17 steps: 4,746 matrices against full Newton's 158,175 (1/33; the contraction rule alone made
+// fewer than 1/100 of them, and 18 % more Newton iterations: 243,742 against 206,568 on
+// meshes/spin-up.yaml with 5 elements and this h, which also ran 15-30 % longer).
 TEST(Dynamics, KeptNewtonMatrixAddsNoErrorToTheSchemeAtSmallSteps) {
   const model::SceneDescription sc = seed001Beam(70e9, 5, 4.0, 15.0);
   const double h = 2.5e-4;
@@ -328,7 +333,7 @@ TEST(Dynamics, KeptNewtonMatrixAddsNoErrorToTheSchemeAtSmallSteps) {
   EXPECT_GT(scheme, 1e-8);  // the scheme's error, far above round-off
   EXPECT_LT(newton, 0.01 * scheme);
   EXPECT_LT(newtonFromX0, 0.01 * scheme);
-  EXPECT_LT(kept.newtonMatrices, full.newtonMatrices / 100);
+  EXPECT_LT(kept.newtonMatrices, full.newtonMatrices / 20);
 }
 
 // A suddenly loaded fine mesh: the constant-acceleration predictor extrapolates the consistent
