@@ -51,7 +51,10 @@ void NewtonMatrixReuse::settleRent() {
   if (_lastIterate >= 0) {
     const PetscInt iterations = _lastIterate + 1;  // one Jacobian call per correction
     if (!_rebuiltThisSolve) _rent += std::max<PetscInt>(0, iterations - 2);
-    if (_judgeThisSolve) _currentPrice = iterations > 2 ? 2.0 * _currentPrice : _price;
+    // a solve that rebuilt the matrix itself (new shifts, the contraction rule, full Newton) says
+    // nothing of the bought one
+    if (_judgeThisSolve && !_rebuiltThisSolve)
+      _currentPrice = iterations > 2 ? std::min(2.0 * _currentPrice, kMaxPriceFactor * _price) : _price;
   }
   _judgeThisSolve = _boughtThisSolve;  // the solve after a bought matrix is the first to use it whole
   _boughtThisSolve = _rebuiltThisSolve = false;
@@ -60,6 +63,7 @@ void NewtonMatrixReuse::settleRent() {
 
 bool NewtonMatrixReuse::retryWithFullNewton() {
   _valid = false;
+  _boughtThisSolve = _judgeThisSolve = false;  // the retry is full Newton: no judge of a bought matrix
   _fullNextSolve = true;     // whoever retries gets full Newton
   return _reusedThisSolve;   // full Newton failed: from the same start a retry would repeat it
 }

@@ -301,19 +301,19 @@ TEST(Dynamics, KeptNewtonMatrixFollowsFullNewtonWithFewerMatrices) {
 // Here: seed 001's spin-up (Omega0 = 4 rad/s, T = 15 s, 20 s) with 5 elements and h = 0.25 ms
 // (80,000 steps). The scheme's error at h is estimated by Richardson from full-Newton runs at h and
 // 2h (second order: e_h = |x_2h - x_h| / 3); the default run must be within 1 % of it from full
-// Newton at h. Measured: e_h = 8.85e-8 m; default - full Newton 3.7e-10 m at -n 1, 2.0e-10 m at -n 2
-// (0.42 %, 0.23 %; the two full-Newton runs differ by round-off growing over the 80,000 steps); with
+// Newton at h. Measured: e_h = 8.85e-8 m; default - full Newton 4.0e-10 m at -n 1, 2.2e-10 m at -n 2
+// (0.46 %, 0.24 %; the two full-Newton runs differ by round-off growing over the 80,000 steps); with
 // the old stop, -dyn_newton_kept_tolerance 0: 2.3e-6 m and 1.8e-6 m, 26x and 20x e_h.
 // The same from X0 (-dyn_ts_strand_alpha_predictor displacement, the start after the first step's
 // check or a Newton failure): there the first correction is the predictor's O(h v) error, not the
 // local error, and so is |R0|; the stop measures against the distance from the constant-acceleration
 // predictor instead, and PETSc's |R| <= rtol |R0| no longer ends a kept matrix's Newton on its own
-// (NewtonConvergence.cpp). Measured: 9.7e-11 m at -n 1, 1.6e-10 m at -n 2 (0.11 %, 0.18 %); before,
+// (NewtonConvergence.cpp). Measured: 3.8e-10 m at -n 1, 1.5e-10 m at -n 2 (0.42 %, 0.17 %); before,
 // 7.05e-6 m, 80x e_h.
 // The matrices: the hub turns the beam away from a kept matrix, whose solves then take a third
 // iteration; the rent rule (NewtonMatrixReuse) buys a new one after 8 such iterations, about every
-// 17 steps: 4,746 matrices against full Newton's 158,175 (1/33; the contraction rule alone made
-// fewer than 1/100 of them, and 18 % more Newton iterations: 243,742 against 206,568 on
+// 16 steps: 4,893 matrices against full Newton's 158,175 (1/32; the contraction rule alone made
+// fewer than 1/100 of them, and 20 % more Newton iterations: 243,742 against 203,914 on
 // meshes/spin-up.yaml with 5 elements and this h, which also ran 15-30 % longer).
 TEST(Dynamics, KeptNewtonMatrixAddsNoErrorToTheSchemeAtSmallSteps) {
   const model::SceneDescription sc = seed001Beam(70e9, 5, 4.0, 15.0);

@@ -22,8 +22,11 @@
 // matrix, those beyond the 2 a kept matrix needs at least) until it reaches the price of a new
 // matrix (`price`, in Newton iterations), then buy one, at the next step's second iterate; this
 // never costs more than twice the best choice made in hindsight. A matrix bought so that does not
-// bring the next step back to 2 iterations (the extra ones come from the nonlinearity within the
-// step, not from an old matrix) doubles the price until one does.
+// bring the next solve back to 2 iterations (the extra ones come from the nonlinearity within the
+// step, not from an old matrix) doubles the price, up to kMaxPriceFactor times `price` (so that a
+// transient's doublings cost a later stale matrix at most that many times the rent), and one that
+// does restores it. The rent is counted per Newton solve: a contact step solved more than once
+// (held stick/slip states) counts each solve.
 #include <petscsnes.h>
 
 #include "strand/solvers/NewtonConvergence.hpp"
@@ -56,6 +59,8 @@ public:
   bool retryWithFullNewton();
   long rebuilds() const { return _rebuilds; }
   PetscReal currentPrice() const { return _currentPrice; }
+
+  static constexpr PetscReal kMaxPriceFactor = 8.0;
 
 private:
   // At a solve's first iterate: the last solve's iterations as rent, and the judgment of a matrix
