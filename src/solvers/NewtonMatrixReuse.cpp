@@ -63,7 +63,7 @@ void NewtonMatrixReuse::settleRent() {
 
 bool NewtonMatrixReuse::retryWithFullNewton() {
   _valid = false;
-  _boughtThisSolve = _judgeThisSolve = false;  // the retry is full Newton: no judge of a bought matrix
+  _boughtThisSolve = _judgeThisSolve = false;  // a failed solve judges no price, and the retry uses no bought matrix
   _fullNextSolve = true;     // whoever retries gets full Newton
   return _reusedThisSolve;   // full Newton failed: from the same start a retry would repeat it
 }

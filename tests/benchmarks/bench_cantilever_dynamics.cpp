@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     PetscCall(p.assembler().gatherToRoot(X, q));
     double tip = 0.0;
     if (!q.empty()) tip = nodePosition(p, q, 0, -1)[2];
-    const elements::SectionValues& sec = s.section;  // (s: the body)
+    const elements::SectionValues& sec = s.section;
     const double staticTip = -sec.number("rho") * sec.number("A") * 9.81 * std::pow(L, 4) / (8.0 * sec.number("E") * sec.number("I"));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD,
                           "{\"bench\": \"cantilever_3d_dynamics\", \"elements\": %d, \"length\": %.6e, \"ranks\": %d, \"dt\": %.3e, "
