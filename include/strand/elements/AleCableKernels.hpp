@@ -13,6 +13,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "strand/core/KernelClones.hpp"
 #include "strand/elements/AncfCable.hpp"
 #include "strand/math/Gauss.hpp"
 #include "strand/math/Hermite.hpp"
@@ -156,8 +157,9 @@ struct AleCableKernels {
   //   dU/dL = sum w (W - f_r'' . r'') - d . f_chord,
   // so that G_L is formed only for the damping's rates.
   template <int P, bool Damped, class S>
-  [[gnu::noinline]] static void force(const CableSection& sec, const AlePointArrays& t, const double* q0, const S* u,
-                                      const S* v, S* f) {
+  STRAND_KERNEL_CLONES [[gnu::noinline]]
+  static void force(const CableSection& sec, const AlePointArrays& t, const double* q0, const S* u,
+                    const S* v, S* f) {
     const Nodes<S> n(q0, u);
     const S iL = 1.0 / n.L;
     S G[kG][P], Gd[kG][P], fG[kG][P], W[P];
@@ -208,6 +210,7 @@ struct AleCableKernels {
 
   // U = L sum_g w_g W_g.
   template <int P, class S>
+  STRAND_KERNEL_CLONES [[gnu::noinline]]
   static S strainEnergy(const CableSection& sec, const AlePointArrays& t, const double* q0, const S* u) {
     const Nodes<S> n(q0, u);
     const S iL = 1.0 / n.L;
@@ -227,8 +230,9 @@ struct AleCableKernels {
   // where phi_xi = h2' chord + L (h1' s1 + h3' s2), phi_xiL = h1' s1 + h3' s2, phi_L = h1 s1 + h3 s2,
   // phi_xixi = h2'' chord + L (h1'' s1 + h3'' s2) and v_xi, v_L the same of the velocities.
   template <int P, bool Moving, class S>
-  [[gnu::noinline]] static void materialForce(double rhoA, const AlePointArrays& t, const double* q0, const S* u,
-                                              const S* v, const S* a, const double* load, S* F) {
+  STRAND_KERNEL_CLONES [[gnu::noinline]]
+  static void materialForce(double rhoA, const AlePointArrays& t, const double* q0, const S* u,
+                            const S* v, const S* a, const double* load, S* F) {
     const Nodes<S> n(q0, u);
     const S iL = 1.0 / n.L;
     S xid[P], xidd[P], Ldot(0.0), Lddot(0.0);
@@ -306,6 +310,7 @@ struct AleCableKernels {
 
   // T = 1/2 rhoA L sum_g w_g |rdot_g|^2.
   template <int P, class S>
+  STRAND_KERNEL_CLONES [[gnu::noinline]]
   static S kineticEnergy(double rhoA, const AlePointArrays& t, const double* q0, const S* u, const S* v) {
     const Nodes<S> n(q0, u);
     S rd[D][P], rd2[P];
@@ -321,6 +326,7 @@ struct AleCableKernels {
   // The power of a load per unit length on the moving material, v . Q_f = L sum_g w_g rdot_g . load
   // (Q_f = int S^T load dp and S v = rdot).
   template <int P, class S>
+  STRAND_KERNEL_CLONES [[gnu::noinline]]
   static S loadPower(const AlePointArrays& t, const double* q0, const S* u, const S* v, const double* load) {
     const Nodes<S> n(q0, u);
     S rd[D][P], p[P];

@@ -26,6 +26,7 @@
 #pragma once
 #include <cmath>
 
+#include "strand/core/KernelClones.hpp"
 #include "strand/elements/ElementKind.hpp"
 #include "strand/elements/ShearBeamSection.hpp"
 #include "strand/elements/SlotIntegration.hpp"
@@ -307,6 +308,7 @@ public:
 
 private:
   template <int P, class S>
+  STRAND_KERNEL_CLONES
   static void forceAt(const Rule& rule, double eta, const double* q0, const S* u, const S* v, S* f) {
     double G0[kG][P];
     S Gu[kG][P], Gd[kG][P], fG[kG][P];
@@ -327,6 +329,7 @@ private:
 
   // Adds one rule's force (if f), K and D (if Dm) to the element's.
   template <int P>
+  STRAND_KERNEL_CLONES
   static void tangentAt(const Rule& rule, double eta, const double* q0, const double* u, const double* v, double* f,
                         double* K, double* Dm) {
     double G0[kG][P], Gu[kG][P], Gd[kG][P], fG[kG][P], KG[kG][kG][P], DG[kG][kG][P];
