@@ -157,9 +157,8 @@ struct AleCableKernels {
   //   dU/dL = sum w (W - f_r'' . r'') - d . f_chord,
   // so that G_L is formed only for the damping's rates.
   template <int P, bool Damped, class S>
-  STRAND_KERNEL_CLONES [[gnu::noinline]]
-  static void force(const CableSection& sec, const AlePointArrays& t, const double* q0, const S* u,
-                    const S* v, S* f) {
+  [[gnu::noinline]] static void force(const CableSection& sec, const AlePointArrays& t, const double* q0, const S* u,
+                                      const S* v, S* f) {
     const Nodes<S> n(q0, u);
     const S iL = 1.0 / n.L;
     S G[kG][P], Gd[kG][P], fG[kG][P], W[P];
@@ -210,7 +209,6 @@ struct AleCableKernels {
 
   // U = L sum_g w_g W_g.
   template <int P, class S>
-  STRAND_KERNEL_CLONES [[gnu::noinline]]
   static S strainEnergy(const CableSection& sec, const AlePointArrays& t, const double* q0, const S* u) {
     const Nodes<S> n(q0, u);
     const S iL = 1.0 / n.L;
@@ -310,7 +308,6 @@ struct AleCableKernels {
 
   // T = 1/2 rhoA L sum_g w_g |rdot_g|^2.
   template <int P, class S>
-  STRAND_KERNEL_CLONES [[gnu::noinline]]
   static S kineticEnergy(double rhoA, const AlePointArrays& t, const double* q0, const S* u, const S* v) {
     const Nodes<S> n(q0, u);
     S rd[D][P], rd2[P];
@@ -326,7 +323,6 @@ struct AleCableKernels {
   // The power of a load per unit length on the moving material, v . Q_f = L sum_g w_g rdot_g . load
   // (Q_f = int S^T load dp and S v = rdot).
   template <int P, class S>
-  STRAND_KERNEL_CLONES [[gnu::noinline]]
   static S loadPower(const AlePointArrays& t, const double* q0, const S* u, const S* v, const double* load) {
     const Nodes<S> n(q0, u);
     S rd[D][P], p[P];

@@ -29,7 +29,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "strand/core/KernelClones.hpp"
 #include "strand/elements/CableSection.hpp"
 #include "strand/elements/CableShapeTable.hpp"
 #include "strand/elements/ElementKind.hpp"
@@ -392,8 +391,7 @@ private:
   // inlined, tangent() was 53 kB of code and the element loop missed the instruction cache 24
   // times as often (cachegrind, 1e5 elements: 4.07M against 0.17M misses)
   template <int P, class S>
-  STRAND_KERNEL_CLONES [[gnu::noinline]]
-  static void forceAt(const CableSection& sec, const Geometry& geo, const CablePointTable& t, const double* q0,
+  [[gnu::noinline]] static void forceAt(const CableSection& sec, const Geometry& geo, const CablePointTable& t, const double* q0,
                       const S* u, const S* v, S* f) {
     S G[kG][P], eps[P], fG[kG][P];
     double k0[P];
@@ -411,7 +409,6 @@ private:
 
   // W = 1/2 EA eps^2 + 1/2 EI |kappa - kappa0|^2 at every point, integrated.
   template <int P, class S>
-  STRAND_KERNEL_CLONES [[gnu::noinline]]
   static S strainEnergyAt(const CableSection& sec, const Geometry& geo, const CablePointTable& t, const double* q0,
                           const S* u) {
     S G[kG][P], eps[P], w[P];
@@ -569,8 +566,7 @@ private:
   }
 
   template <int P>
-  STRAND_KERNEL_CLONES [[gnu::noinline]]
-  static void tangentAt(const CableSection& sec, const Geometry& geo, const CablePointTable& t, const double* q0,
+  [[gnu::noinline]] static void tangentAt(const CableSection& sec, const Geometry& geo, const CablePointTable& t, const double* q0,
                         const double* u, const double* v, double* f, double* K, double* Dm) {
     double G[kG][P], Gd[kG][P], eps[P], k0[P], fG[kG][P], KG[kG][kG][P], DG[kG][kG][P];
     pointKinematics<P>(t, q0, u, G, eps, geo.eps0);
